@@ -1,0 +1,53 @@
+#pragma once
+// A vertex-edge contact between two blocks, with the state that survives from
+// step to step (open / sliding / locked, intact joint or failed, the locked
+// shear reference point).
+#include <cstdint>
+
+#include "core/types.hpp"
+
+namespace dda {
+
+enum class ContactState : std::uint8_t { Open, Sliding, Locked };
+
+const char* to_string(ContactState s);
+
+struct Contact {
+  // Identity: vertex `vertex` of block `vblock` against edge `edge` (from
+  // vertex `edge` to `edge+1`) of block `eblock`. Stable while both exist.
+  BlockId vblock = -1;
+  BlockId eblock = -1;
+  std::int32_t vertex = -1;
+  std::int32_t edge = -1;
+  std::int32_t joint = 0;  // joint material (of the edge)
+
+  ContactState state = ContactState::Open;
+  // Intact: cohesion and tensile strength still act. Lost for good on failure.
+  bool intact = false;
+  // Share of joint length this contact stands for (cohesion and tension act
+  // over it): half the overlap of two facing edges; 0 at a corner contact.
+  double length = 0;
+  // Shear reference: the point on the edge (parameter 0..1) where the vertex
+  // locked; valid while locked.
+  double ref_param = 0;
+  bool ref_valid = false;
+  // Sign of the last sliding direction along the edge (for friction).
+  std::int8_t slide_sign = 0;
+
+  // Results of the last converged solve (compression positive), for callers.
+  double normal_force = 0;  // N (per unit thickness)
+  double shear_force = 0;   // N
+  double penetration = 0;   // m, positive when the vertex is inside the edge's block
+};
+
+inline bool same_identity(const Contact& a, const Contact& b) {
+  return a.vblock == b.vblock && a.vertex == b.vertex && a.eblock == b.eblock && a.edge == b.edge;
+}
+inline bool identity_less(const Contact& a, const Contact& b) {
+  if (a.vblock != b.vblock) return a.vblock < b.vblock;
+  if (a.vertex != b.vertex) return a.vertex < b.vertex;
+  if (a.eblock != b.eblock) return a.eblock < b.eblock;
+  return a.edge < b.edge;
+}
+
+}  // namespace dda

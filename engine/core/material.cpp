@@ -1,0 +1,53 @@
+#include "core/material.hpp"
+
+#include <cmath>
+
+#include "core/error.hpp"
+
+namespace dda {
+
+static void require_positive(double v, const std::string& what, const char* name) {
+  if (!std::isfinite(v)) throw Error(msg(what, ": ", name, " is not a finite number (", v, ")"));
+  if (v <= 0) throw Error(msg(what, ": ", name, " must be positive, got ", v));
+}
+
+void validate(const RockMaterial& m, const std::string& what) {
+  require_positive(m.density, what, "density");
+  require_positive(m.youngs, what, "Young's modulus");
+  if (!std::isfinite(m.poisson)) throw Error(msg(what, ": Poisson's ratio is not a finite number"));
+  if (m.poisson < 0 || m.poisson >= 0.5)
+    throw Error(msg(what, ": Poisson's ratio must lie in [0, 0.5), got ", m.poisson));
+}
+
+void validate(const JointMaterial& m, const std::string& what) {
+  if (!std::isfinite(m.friction_deg) || m.friction_deg < 0 || m.friction_deg >= 90)
+    throw Error(msg(what, ": friction angle must lie in [0, 90) degrees, got ", m.friction_deg));
+  if (!std::isfinite(m.cohesion) || m.cohesion < 0)
+    throw Error(msg(what, ": cohesion must be zero or positive, got ", m.cohesion));
+  if (!std::isfinite(m.tensile_strength) || m.tensile_strength < 0)
+    throw Error(msg(what, ": tensile strength must be zero or positive, got ", m.tensile_strength));
+}
+
+Mat3 elastic_matrix(const RockMaterial& m, PlaneMode mode) {
+  const double e = m.youngs, nu = m.poisson;
+  Mat3 d = Mat3::Zero();
+  if (mode == PlaneMode::Stress) {
+    const double c = e / (1 - nu * nu);
+    d << c, c * nu, 0, c * nu, c, 0, 0, 0, c * (1 - nu) / 2;
+  } else {
+    const double c = e / ((1 + nu) * (1 - 2 * nu));
+    d << c * (1 - nu), c * nu, 0, c * nu, c * (1 - nu), 0, 0, 0, c * (1 - 2 * nu) / 2;
+  }
+  return d;
+}
+
+double p_wave_speed(const RockMaterial& m, PlaneMode mode) {
+  // Plane stress: the in-plane P modulus is E/(1-ν²); plane strain: K + 4G/3.
+  const double e = m.youngs, nu = m.poisson;
+  const double modulus = mode == PlaneMode::Stress ? e / (1 - nu * nu) : e * (1 - nu) / ((1 + nu) * (1 - 2 * nu));
+  return std::sqrt(modulus / m.density);
+}
+
+double s_wave_speed(const RockMaterial& m) { return std::sqrt(m.youngs / (2 * (1 + m.poisson)) / m.density); }
+
+}  // namespace dda

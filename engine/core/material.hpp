@@ -1,0 +1,38 @@
+#pragma once
+// Rock (block) and joint (contact) materials, and the controls of a run.
+#include <string>
+
+#include "core/types.hpp"
+
+namespace dda {
+
+enum class PlaneMode { Stress, Strain };
+
+struct RockMaterial {
+  double density = 2600;   // kg/m³
+  double youngs = 5e9;     // Pa
+  double poisson = 0.25;   // -
+};
+
+// Mohr-Coulomb joint. Cohesion and tensile strength act only while a contact
+// is intact; once it fails in tension or shear they are lost for good.
+struct JointMaterial {
+  double friction_deg = 30;      // friction angle φ, degrees (radians inside the engine)
+  double cohesion = 0;           // Pa
+  double tensile_strength = 0;   // Pa
+};
+
+// Throw dda::Error naming `what` and the parameter when a value is NaN,
+// non-positive where it must be positive, or out of range.
+void validate(const RockMaterial& m, const std::string& what);
+void validate(const JointMaterial& m, const std::string& what);
+
+// Elastic matrix E (3×3) mapping (εx, εy, γxy) to (σx, σy, τxy).
+Mat3 elastic_matrix(const RockMaterial& m, PlaneMode mode);
+
+// P- and S-wave speeds of the rock (used for step-time estimates and the
+// viscous boundary): C_P = sqrt((K + 4G/3)/ρ), C_S = sqrt(G/ρ).
+double p_wave_speed(const RockMaterial& m, PlaneMode mode);
+double s_wave_speed(const RockMaterial& m);
+
+}  // namespace dda

@@ -1,0 +1,116 @@
+#include "geometry/polygon.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/error.hpp"
+
+namespace dda {
+
+double signed_area(std::span<const Vec2> v) {
+  const std::size_t n = v.size();
+  if (n < 3) return 0;
+  // Relative to the first vertex, so coordinates far from the origin keep their digits.
+  double twice = 0;
+  for (std::size_t k = 1; k + 1 < n; ++k) twice += cross(v[k] - v[0], v[k + 1] - v[0]);
+  return 0.5 * twice;
+}
+
+PolygonMoments polygon_moments(std::span<const Vec2> v) {
+  PolygonMoments m;
+  const std::size_t n = v.size();
+  if (n < 3) return m;
+  // Green's theorem edge sums, in coordinates relative to the first vertex.
+  const Vec2 o = v[0];
+  double a2 = 0, cx = 0, cy = 0, ixx = 0, iyy = 0, ixy = 0;
+  for (std::size_t k = 0; k < n; ++k) {
+    const Vec2 p = v[k] - o;
+    const Vec2 q = v[(k + 1) % n] - o;
+    const double c = p.x() * q.y() - q.x() * p.y();
+    a2 += c;
+    cx += (p.x() + q.x()) * c;
+    cy += (p.y() + q.y()) * c;
+    ixx += (p.x() * p.x() + p.x() * q.x() + q.x() * q.x()) * c;
+    iyy += (p.y() * p.y() + p.y() * q.y() + q.y() * q.y()) * c;
+    ixy += (p.x() * q.y() + 2 * p.x() * p.y() + 2 * q.x() * q.y() + q.x() * p.y()) * c;
+  }
+  const double area = 0.5 * a2;
+  m.area = area;
+  if (area == 0) return m;
+  const double gx = cx / (3 * a2), gy = cy / (3 * a2);
+  m.centroid = o + Vec2(gx, gy);
+  // About the centroid (parallel-axis theorem). The sign of the sums follows
+  // the orientation; report moments of the filled region (positive).
+  const double s = area > 0 ? 1.0 : -1.0;
+  m.sxx = s * (ixx / 12.0 - area * gx * gx);
+  m.syy = s * (iyy / 12.0 - area * gy * gy);
+  m.sxy = s * (ixy / 24.0 - area * gx * gy);
+  return m;
+}
+
+bool segments_cross_properly(const Vec2& a, const Vec2& b, const Vec2& c, const Vec2& d) {
+  const double d1 = cross(b - a, c - a), d2 = cross(b - a, d - a);
+  const double d3 = cross(d - c, a - c), d4 = cross(d - c, b - c);
+  return ((d1 > 0 && d2 < 0) || (d1 < 0 && d2 > 0)) && ((d3 > 0 && d4 < 0) || (d3 < 0 && d4 > 0));
+}
+
+// Is p on the closed segment [a,b] (within a relative tolerance)?
+static bool on_segment(const Vec2& a, const Vec2& b, const Vec2& p, double tol) {
+  const Vec2 ab = b - a;
+  const double len = ab.norm();
+  if (len == 0) return (p - a).norm() <= tol;
+  if (std::abs(cross(ab, p - a)) / len > tol) return false;
+  const double t = ab.dot(p - a) / (len * len);
+  return t >= -tol / len && t <= 1 + tol / len;
+}
+
+void validate_simple_polygon(std::span<const Vec2> v, const std::string& what) {
+  const std::size_t n = v.size();
+  if (n < 3) throw Error(msg(what, ": a polygon needs at least 3 vertices, got ", n));
+  double extent = 0;
+  for (std::size_t k = 0; k < n; ++k) {
+    if (!std::isfinite(v[k].x()) || !std::isfinite(v[k].y()))
+      throw Error(msg(what, ": vertex ", k + 1, " has a non-finite coordinate"));
+    extent = std::max({extent, std::abs(v[k].x() - v[0].x()), std::abs(v[k].y() - v[0].y())});
+  }
+  const double tol = 1e-12 * std::max(extent, 1e-300);
+  for (std::size_t k = 0; k < n; ++k) {
+    if ((v[(k + 1) % n] - v[k]).norm() <= tol)
+      throw Error(msg(what, ": vertices ", k + 1, " and ", (k + 1) % n + 1, " are repeated (zero-length edge)"));
+  }
+  const double area = signed_area(v);
+  if (!(std::abs(area) > tol * extent))
+    throw Error(msg(what, ": polygon has zero area"));
+  // Self-intersection: any two non-adjacent edges that meet. O(n²); block
+  // outlines are small, and this runs once per block at creation.
+  for (std::size_t i = 0; i < n; ++i) {
+    const Vec2 &a = v[i], &b = v[(i + 1) % n];
+    for (std::size_t j = i + 1; j < n; ++j) {
+      const bool adjacent = (j == i + 1) || (i == 0 && j == n - 1);
+      const Vec2 &c = v[j], &d = v[(j + 1) % n];
+      if (segments_cross_properly(a, b, c, d))
+        throw Error(msg(what, ": polygon is self-intersecting (edges ", i + 1, " and ", j + 1, " cross)"));
+      if (!adjacent && (on_segment(a, b, c, tol) || on_segment(a, b, d, tol) || on_segment(c, d, a, tol) ||
+                        on_segment(c, d, b, tol)))
+        throw Error(msg(what, ": polygon is self-intersecting (edges ", i + 1, " and ", j + 1, " touch)"));
+    }
+  }
+}
+
+void make_counter_clockwise(std::vector<Vec2>& v) {
+  if (signed_area(v) < 0) std::reverse(v.begin(), v.end());
+}
+
+bool point_in_polygon(std::span<const Vec2> v, const Vec2& p) {
+  bool inside = false;
+  const std::size_t n = v.size();
+  for (std::size_t i = 0, j = n - 1; i < n; j = i++) {
+    if ((v[i].y() > p.y()) != (v[j].y() > p.y())) {
+      const double x = v[j].x() + (p.y() - v[j].y()) * (v[i].x() - v[j].x()) / (v[i].y() - v[j].y());
+      if (p.x() < x) inside = !inside;
+    }
+  }
+  return inside;
+}
+
+}  // namespace dda

@@ -1,0 +1,41 @@
+#pragma once
+// Simple polygons: area, centroid and the second moments the DDA sub-matrices
+// need, plus validation of user-supplied outlines.
+#include <span>
+#include <string>
+#include <vector>
+
+#include "core/types.hpp"
+
+namespace dda {
+
+// Integrals over a polygon. Second moments are about the centroid:
+//   sxx = ∫(x-x0)² dA, syy = ∫(y-y0)² dA, sxy = ∫(x-x0)(y-y0) dA.
+struct PolygonMoments {
+  double area = 0;  // signed: positive for counter-clockwise vertices
+  Vec2 centroid = Vec2::Zero();
+  double sxx = 0, syy = 0, sxy = 0;
+};
+
+double signed_area(std::span<const Vec2> vertices);
+PolygonMoments polygon_moments(std::span<const Vec2> vertices);
+
+// Throws dda::Error naming `what` (e.g. "block 12") when the outline is not a
+// usable simple polygon: fewer than 3 vertices, a non-finite coordinate,
+// repeated consecutive vertices, zero area, or self-intersection.
+// Vertex order may be either; callers orient with `make_counter_clockwise`.
+void validate_simple_polygon(std::span<const Vec2> vertices, const std::string& what);
+
+void make_counter_clockwise(std::vector<Vec2>& vertices);
+
+// Signed cross product (a × b).
+inline double cross(const Vec2& a, const Vec2& b) { return a.x() * b.y() - a.y() * b.x(); }
+
+// Point in polygon (even-odd rule); points on the boundary may go either way.
+bool point_in_polygon(std::span<const Vec2> vertices, const Vec2& p);
+
+// Do the closed segments [a,b] and [c,d] cross at a point interior to both?
+// Touching at end points or collinear overlap is not a proper crossing.
+bool segments_cross_properly(const Vec2& a, const Vec2& b, const Vec2& c, const Vec2& d);
+
+}  // namespace dda
