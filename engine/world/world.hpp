@@ -14,6 +14,7 @@
 #include "contact/contact.hpp"
 #include "core/material.hpp"
 #include "core/types.hpp"
+#include "solver/block_sparse_matrix.hpp"
 
 namespace dda {
 
@@ -118,6 +119,11 @@ class World {
   // Half the model's height at the start (y extent / 2): the g2 reference length.
   double half_height() const;
 
+  // The linear system of the last open-close iteration (A·D = F), for tests
+  // and debugging.
+  const BlockSparseMatrix& last_matrix() const;
+  const VecX& last_rhs() const;
+
   // Hash of the full state (positions, velocities, stresses, contacts), for
   // determinism checks.
   std::uint64_t state_hash() const;
@@ -125,7 +131,18 @@ class World {
  private:
   struct Impl;
   BlockId check(BlockId b) const;
-  void prepare_first_step();
+
+  // The stages of step(), in order (world/step.cpp).
+  void prepare_first_step();      // validate the model once: materials, overlaps, g2 length
+  void resolve_controls();        // validate controls, fill in automatic g0 and g1
+  void detect_contacts();         // broad + narrow phase, carry states, linearise, matrix shape
+  int solve_step(double dt);      // loop { assemble, solve, check contacts }; 0 or a rejection
+  void assemble_block_terms(double dt);  // elastic, inertia, stress, loads, fixed points
+  void assemble_contacts();       // block terms + contact springs and friction into the matrix
+  bool check_contacts();          // open-close decision; true when a contact changed
+  double largest_step_displacement() const;
+  double deepest_penetration() const;
+  void update(double dt);         // move vertices, stresses, velocities, contacts; advance time
 
   Controls controls_;
   std::vector<RockMaterial> rocks_;

@@ -1,0 +1,106 @@
+#include "contact/contact_law.hpp"
+
+#include <cmath>
+
+#include "block/displacement.hpp"
+#include "geometry/polygon.hpp"
+
+namespace dda {
+
+const char* to_string(ContactState s) {
+  switch (s) {
+    case ContactState::Open: return "open";
+    case ContactState::Sliding: return "sliding";
+    case ContactState::Locked: return "locked";
+  }
+  return "?";
+}
+
+ContactKinematics contact_kinematics(const BlockPolygons& blocks, std::span<const Vec2> centroids, const Contact& c) {
+  ContactKinematics k;
+  const Vec2& p1 = blocks.vertex(c.vblock, c.vertex);
+  const Vec2& p2 = blocks.vertex(c.eblock, c.edge);
+  const Vec2& p3 = blocks.vertex(c.eblock, c.edge + 1);
+  const Vec2& cv = centroids[c.vblock];
+  const Vec2& ce = centroids[c.eblock];
+  const Vec2 edge = p3 - p2;
+  const double l = edge.norm();
+  const Vec2 t = edge / l;
+  k.edge_length = l;
+
+  // Normal: twice the signed area of (p1, p2, p3) over l; it is positive
+  // when p1 lies left of the counter-clockwise edge, i.e. inside the block.
+  // Its derivative with respect to the three points' displacements gives the
+  // coefficients below (Shi 1988, eq. 4.8).
+  k.d0 = cross(p2 - p1, p3 - p1) / l;
+  const Vec2 g1(p2.y() - p3.y(), p3.x() - p2.x());
+  const Vec2 g2(p3.y() - p1.y(), p1.x() - p3.x());
+  const Vec2 g3(p1.y() - p2.y(), p2.x() - p1.x());
+  k.en_v = displacement_matrix(p1, cv).transpose() * g1 / l;
+  k.en_e = (displacement_matrix(p2, ce).transpose() * g2 + displacement_matrix(p3, ce).transpose() * g3) / l;
+
+  // Shear: displacement of the vertex along the edge relative to the
+  // reference point p0 on the edge (where it locked, else its projection).
+  k.param = (p1 - p2).dot(t) / l;
+  const double ref = c.ref_valid ? c.ref_param : k.param;
+  const Vec2 p0 = p2 + ref * edge;
+  k.s0 = (p1 - p0).dot(t);
+  k.es_v = displacement_matrix(p1, cv).transpose() * t;
+  k.es_e = -(displacement_matrix(p0, ce).transpose() * t);
+  return k;
+}
+
+bool update_contact_state(Contact& c, ContactIterate& it, const JointMaterial& joint, const ContactSprings& k, double dn,
+                          double ds, double ds_step) {
+  const ContactState old_state = c.state;
+  const bool old_intact = c.intact;
+  const std::int8_t old_sign = c.slide_sign;
+  const double tan_phi = std::tan(deg_to_rad(joint.friction_deg));
+  const double normal = k.kn * dn;  // compression positive
+  const double shear = k.ks * ds;
+  auto slide_towards = [&](double direction) {
+    c.state = ContactState::Sliding;
+    c.slide_sign = direction >= 0 ? 1 : -1;
+  };
+
+  if (c.intact) {
+    // An intact joint holds tension up to σt·L and shear up to c·L + N·tanφ.
+    if (normal < -joint.tensile_strength * c.length) {
+      c.intact = false;
+      c.state = ContactState::Open;
+    } else if (std::abs(shear) > joint.cohesion * c.length + normal * tan_phi) {
+      c.intact = false;
+      if (dn < 0)
+        c.state = ContactState::Open;
+      else
+        slide_towards(ds);
+    } else {
+      c.state = ContactState::Locked;
+    }
+  } else if (dn < 0) {
+    c.state = ContactState::Open;
+  } else {
+    switch (old_state) {
+      case ContactState::Open:
+        // Just closed: lock first; the next iteration checks friction.
+        c.state = ContactState::Locked;
+        it.s0 = 0;
+        break;
+      case ContactState::Locked:
+        if (std::abs(shear) > normal * tan_phi) slide_towards(ds);
+        break;
+      case ContactState::Sliding:
+        // Motion reversed against the assumed sliding direction: lock again.
+        if (ds_step * c.slide_sign < 0) {
+          c.state = ContactState::Locked;
+          it.s0 = 0;
+        }
+        break;
+    }
+  }
+  it.normal_force = c.state == ContactState::Open ? 0.0 : normal;
+  return c.state != old_state || c.intact != old_intact ||
+         (c.state == ContactState::Sliding && c.slide_sign != old_sign);
+}
+
+}  // namespace dda

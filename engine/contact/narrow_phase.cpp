@@ -1,0 +1,219 @@
+#include "contact/narrow_phase.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/parallel.hpp"
+#include "geometry/polygon.hpp"
+
+namespace dda {
+
+namespace {
+
+// Geometry of one edge of a block: from vertex k to k+1 (counter-clockwise,
+// so the block lies to the left and the outward normal points right).
+struct Edge {
+  Vec2 p0, p1, t, n;  // ends, unit direction, outward unit normal
+  double length;
+};
+
+Edge edge_of(const BlockPolygons& blocks, int b, int k) {
+  Edge e;
+  e.p0 = blocks.vertex(b, k);
+  e.p1 = blocks.vertex(b, k + 1);
+  const Vec2 d = e.p1 - e.p0;
+  e.length = d.norm();
+  e.t = d / e.length;
+  e.n = Vec2(e.t.y(), -e.t.x());
+  return e;
+}
+
+// Unit directions from vertex k along its two edges.
+std::pair<Vec2, Vec2> wedge_of(const BlockPolygons& blocks, int b, int k) {
+  const Vec2& v = blocks.vertex(b, k);
+  return {(blocks.vertex(b, k - 1) - v).normalized(), (blocks.vertex(b, k + 1) - v).normalized()};
+}
+
+bool is_convex(const BlockPolygons& blocks, int b, int k) {
+  const Vec2& v = blocks.vertex(b, k);
+  return cross(v - blocks.vertex(b, k - 1), blocks.vertex(b, k + 1) - v) > 0;
+}
+
+bool facing(const Edge& e, const Edge& f, double parallel_sin) {
+  // Anti-parallel within the tolerance: e.t·f.t ≈ -1.
+  return e.t.dot(f.t) < 0 && std::abs(cross(e.t, f.t)) <= parallel_sin;
+}
+
+// How clearly a vertex wedge lies outside an edge: the smaller of its two
+// directions' components along the edge's outward normal.
+double entrance_score(const std::pair<Vec2, Vec2>& wedge, const Edge& f) {
+  return std::min(wedge.first.dot(f.n), wedge.second.dot(f.n));
+}
+
+constexpr double kWedgeSlack = 1e-3;
+
+struct PairDetector {
+  const BlockPolygons& blocks;
+  std::span<const int> edge_joint;
+  const NarrowPhaseSettings& s;
+  std::vector<Contact>& out;
+  std::vector<std::pair<int, int>> covered;  // (block, vertex) already in a facing-edge contact
+
+  void add(int vb, int vertex, int eb, int edge, double length) {
+    Contact c;
+    c.vblock = vb;
+    c.vertex = vertex;
+    c.eblock = eb;
+    c.edge = edge;
+    c.joint = edge_joint[blocks.start[eb] + edge];
+    c.length = length;
+    out.push_back(c);
+  }
+  bool is_covered(int b, int k) const {
+    return std::find(covered.begin(), covered.end(), std::pair<int, int>(b, k)) != covered.end();
+  }
+  int wrap(int b, int k) const { return ((k % blocks.size(b)) + blocks.size(b)) % blocks.size(b); }
+
+  void facing_edges(int a, int b) {
+    for (int ia = 0; ia < blocks.size(a); ++ia) {
+      const Edge ea = edge_of(blocks, a, ia);
+      for (int ib = 0; ib < blocks.size(b); ++ib) {
+        const Edge eb = edge_of(blocks, b, ib);
+        if (!facing(ea, eb, s.parallel_sin)) continue;
+        // Positions along eb of ea's ends (ea runs the other way).
+        const double s0 = (ea.p0 - eb.p0).dot(eb.t), s1 = (ea.p1 - eb.p0).dot(eb.t);
+        const double lo = std::max(0.0, s1), hi = std::min(eb.length, s0);
+        const double shorter = std::min(ea.length, eb.length);
+        if (hi - lo <= 1e-6 * shorter) continue;  // no shared length (an aligned corner at most)
+        // Gap (outside of b positive) of ea at the two overlap ends.
+        const double g0 = (ea.p0 - eb.p0).dot(eb.n), g1 = (ea.p1 - eb.p0).dot(eb.n);
+        auto gap_at = [&](double pos) { return s0 == s1 ? g0 : g1 + (pos - s1) / (s0 - s1) * (g0 - g1); };
+        const double glo = gap_at(lo), ghi = gap_at(hi);
+        const double max_depth = std::min(s.range, 0.25 * shorter);
+        if (std::min(glo, ghi) > s.range || std::min(glo, ghi) < -max_depth) continue;
+        const double share = 0.5 * (hi - lo);
+        const double tie = 0.05 * shorter;
+        const int a_lo = wrap(a, ia + 1), a_hi = ia;            // a's vertices at the low / high end
+        const int b_lo = ib, b_hi = wrap(b, ib + 1);            // b's vertices at the low / high end
+        // Low end of the overlap (near eb's start).
+        if (s1 >= -tie) {
+          add(a, a_lo, b, ib, share);
+          covered.emplace_back(a, a_lo);
+          if (s1 <= tie) covered.emplace_back(b, b_lo);
+        } else {
+          add(b, b_lo, a, ia, share);
+          covered.emplace_back(b, b_lo);
+        }
+        // High end (near eb's end).
+        if (s0 <= eb.length + tie) {
+          add(a, a_hi, b, ib, share);
+          covered.emplace_back(a, a_hi);
+          if (s0 >= eb.length - tie) covered.emplace_back(b, b_hi);
+        } else {
+          add(b, b_hi, a, ia, share);
+          covered.emplace_back(b, b_hi);
+        }
+      }
+    }
+  }
+
+  // Does an edge at vertex k of block x face an edge at vertex l of block y?
+  bool aligned_corner(int x, int k, int y, int l) const {
+    for (int ex : {k - 1, k})
+      for (int ey : {l - 1, l})
+        if (facing(edge_of(blocks, x, wrap(x, ex)), edge_of(blocks, y, wrap(y, ey)), s.parallel_sin)) return true;
+    return false;
+  }
+
+  // Convex vertices of x near the interior of edges of y.
+  void vertex_to_edge(int x, int y) {
+    for (int k = 0; k < blocks.size(x); ++k) {
+      if (is_covered(x, k) || !is_convex(blocks, x, k)) continue;
+      const Vec2& v = blocks.vertex(x, k);
+      const auto wedge = wedge_of(blocks, x, k);
+      const Edge prev = edge_of(blocks, x, wrap(x, k - 1)), next = edge_of(blocks, x, k);
+      for (int f = 0; f < blocks.size(y); ++f) {
+        const Edge e = edge_of(blocks, y, f);
+        if ((v - e.p0).norm() <= s.range || (v - e.p1).norm() <= s.range) continue;  // vertex-vertex
+        const double along = (v - e.p0).dot(e.t);
+        if (along <= 0 || along >= e.length) continue;
+        const double gap = (v - e.p0).dot(e.n);
+        if (gap > s.range || gap < -std::min(s.range, 0.25 * e.length)) continue;
+        if (facing(prev, e, s.parallel_sin) || facing(next, e, s.parallel_sin)) continue;
+        if (entrance_score(wedge, e) < -kWedgeSlack) continue;
+        add(x, k, y, f, 0.0);
+      }
+    }
+  }
+
+  // Vertex-vertex approaches: one contact per vertex pair (entrance rule).
+  void vertex_to_vertex(int a, int b) {
+    for (int k = 0; k < blocks.size(a); ++k) {
+      if (is_covered(a, k)) continue;
+      const Vec2& va = blocks.vertex(a, k);
+      for (int l = 0; l < blocks.size(b); ++l) {
+        if (is_covered(b, l)) continue;
+        const Vec2& vb = blocks.vertex(b, l);
+        if ((va - vb).norm() > s.range) continue;
+        if (aligned_corner(a, k, b, l)) continue;
+        struct Option { int vblock, vertex, eblock, edge; double score; };
+        Option best{-1, -1, -1, -1, -kWedgeSlack};
+        auto consider = [&](int x, int vx, int y, int ey) {
+          if (!is_convex(blocks, x, vx)) return;
+          const Edge e = edge_of(blocks, y, ey);
+          const double gap = (blocks.vertex(x, vx) - e.p0).dot(e.n);
+          if (gap < -std::min(s.range, 0.25 * e.length)) return;
+          const double score = entrance_score(wedge_of(blocks, x, vx), e);
+          if (score > best.score) best = {x, vx, y, ey, score};
+        };
+        consider(a, k, b, wrap(b, l - 1));
+        consider(a, k, b, l);
+        consider(b, l, a, wrap(a, k - 1));
+        consider(b, l, a, k);
+        if (best.vblock >= 0) add(best.vblock, best.vertex, best.eblock, best.edge, 0.0);
+      }
+    }
+  }
+};
+
+}  // namespace
+
+void detect_pair_contacts(const BlockPolygons& blocks, std::span<const int> edge_joint, int a, int b,
+                          const NarrowPhaseSettings& settings, std::vector<Contact>& out) {
+  PairDetector d{blocks, edge_joint, settings, out, {}};
+  const std::size_t first = out.size();
+  d.facing_edges(a, b);
+  d.vertex_to_edge(a, b);
+  d.vertex_to_edge(b, a);
+  d.vertex_to_vertex(a, b);
+  // One contact per identity (a vertex can bound two overlaps of the same edge
+  // only in degenerate outlines; merge their lengths).
+  std::sort(out.begin() + first, out.end(), identity_less);
+  std::size_t w = first;
+  for (std::size_t r = first; r < out.size(); ++r) {
+    if (w > first && same_identity(out[w - 1], out[r]))
+      out[w - 1].length += out[r].length;
+    else
+      out[w++] = out[r];
+  }
+  out.resize(w);
+}
+
+std::vector<Contact> detect_contacts(const BlockPolygons& blocks, std::span<const int> edge_joint,
+                                     std::span<const std::pair<int, int>> pairs, const NarrowPhaseSettings& settings) {
+  const std::size_t chunks = chunk_count(pairs.size());
+  std::vector<std::vector<Contact>> found(chunks);
+  tbb::parallel_for(std::size_t(0), chunks, [&](std::size_t c) {
+    const std::size_t end = std::min(pairs.size(), (c + 1) * kChunk);
+    for (std::size_t p = c * kChunk; p < end; ++p)
+      detect_pair_contacts(blocks, edge_joint, pairs[p].first, pairs[p].second, settings, found[c]);
+  });
+  std::size_t total = 0;
+  for (const auto& f : found) total += f.size();
+  std::vector<Contact> contacts;
+  contacts.reserve(total);
+  for (const auto& f : found) contacts.insert(contacts.end(), f.begin(), f.end());
+  return contacts;
+}
+
+}  // namespace dda

@@ -1,0 +1,44 @@
+#pragma once
+// Narrow phase: the vertex-edge contacts of each candidate block pair.
+//
+// Two kinds, chosen so that a joint between two blocks carries exactly two
+// contacts, one at each end of the shared length (so the joint's normal
+// stiffness is k_n = 2·g0/l, the paper's Eq. 4):
+//  1. Facing edges: two edges that are anti-parallel (within ~1°), close, and
+//     overlap along their length give one contact at each end of the overlap.
+//     The contact's vertex is the block vertex that bounds the overlap there;
+//     where the two blocks' vertices coincide (within 5 % of the shorter
+//     edge, so the choice does not flicker as blocks move) the vertex of the
+//     block with the lower id is used.
+//  2. Corners: a convex vertex near the interior of a non-parallel edge whose
+//     outside it approaches (its wedge "enters" the edge), and vertex-vertex
+//     approaches resolved by Shi's entrance rule: of the four edges meeting at
+//     the two vertices, the one whose outside holds the other vertex's wedge
+//     most clearly. Corners of aligned blocks that merely touch (the diagonal
+//     neighbours at a four-block junction of a regular joint grid) make no
+//     contact: the facing edges of the side neighbours carry that junction.
+#include <span>
+#include <utility>
+#include <vector>
+
+#include "contact/contact.hpp"
+#include "geometry/block_polygons.hpp"
+
+namespace dda {
+
+struct NarrowPhaseSettings {
+  double range = 0;          // search distance (m)
+  double parallel_sin = 0.02;  // edges within asin(0.02) ≈ 1.1° of anti-parallel face each other
+};
+
+// Contacts of the pair (a, b), a < b, appended to `out` (identity, joint from
+// `edge_joint` indexed like blocks.vertices, and length; state left Open).
+void detect_pair_contacts(const BlockPolygons& blocks, std::span<const int> edge_joint, int a, int b,
+                          const NarrowPhaseSettings& settings, std::vector<Contact>& out);
+
+// Every pair in parallel; the result is ordered by pair, then identity,
+// whatever the thread count.
+std::vector<Contact> detect_contacts(const BlockPolygons& blocks, std::span<const int> edge_joint,
+                                     std::span<const std::pair<int, int>> pairs, const NarrowPhaseSettings& settings);
+
+}  // namespace dda

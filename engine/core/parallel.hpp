@@ -1,0 +1,63 @@
+#pragma once
+// Deterministic parallel building blocks. Results never depend on the thread
+// count: work is split into fixed-size chunks and partial results are
+// combined serially in chunk order.
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include <cstddef>
+#include <vector>
+
+namespace dda {
+
+// Fixed chunking, independent of the number of threads.
+constexpr std::size_t kChunk = 512;
+
+inline std::size_t chunk_count(std::size_t n) { return (n + kChunk - 1) / kChunk; }
+
+// for_each(i) over [0, n) in parallel; f must only write to data owned by i.
+template <typename F>
+void parallel_for_each(std::size_t n, F&& f, std::size_t grain = 64) {
+  if (n == 0) return;
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, grain), [&](const tbb::blocked_range<std::size_t>& r) {
+    for (std::size_t i = r.begin(); i != r.end(); ++i) f(i);
+  });
+}
+
+// Sum of f(i) over [0, n): partial sums per fixed chunk, combined in order.
+template <typename T, typename F>
+T deterministic_sum(std::size_t n, F&& f) {
+  const std::size_t chunks = chunk_count(n);
+  std::vector<T> partial(chunks, T(0));
+  tbb::parallel_for(std::size_t(0), chunks, [&](std::size_t c) {
+    T s(0);
+    const std::size_t end = std::min(n, (c + 1) * kChunk);
+    for (std::size_t i = c * kChunk; i < end; ++i) s += f(i);
+    partial[c] = s;
+  });
+  T total(0);
+  for (const T& p : partial) total += p;
+  return total;
+}
+
+// Max of f(i) over [0, n) (max is order-independent, but keep one helper).
+template <typename T, typename F>
+T parallel_max(std::size_t n, T init, F&& f) {
+  const std::size_t chunks = chunk_count(n);
+  std::vector<T> partial(chunks, init);
+  tbb::parallel_for(std::size_t(0), chunks, [&](std::size_t c) {
+    T m = init;
+    const std::size_t end = std::min(n, (c + 1) * kChunk);
+    for (std::size_t i = c * kChunk; i < end; ++i) {
+      const T v = f(i);
+      if (v > m) m = v;
+    }
+    partial[c] = m;
+  });
+  T m = init;
+  for (const T& p : partial)
+    if (p > m) m = p;
+  return m;
+}
+
+}  // namespace dda

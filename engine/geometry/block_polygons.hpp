@@ -1,0 +1,24 @@
+#pragma once
+// A read-only view of every block outline: block b owns
+// vertices[start[b] .. start[b+1]), counter-clockwise.
+#include <span>
+
+#include "core/types.hpp"
+
+namespace dda {
+
+struct BlockPolygons {
+  std::span<const int> start;
+  std::span<const Vec2> vertices;
+
+  int count() const { return start.empty() ? 0 : static_cast<int>(start.size()) - 1; }
+  int size(int b) const { return start[b + 1] - start[b]; }
+  std::span<const Vec2> of(int b) const { return vertices.subspan(start[b], size(b)); }
+  // Vertex k of block b, with k taken modulo the block's vertex count.
+  const Vec2& vertex(int b, int k) const {
+    const int n = size(b);
+    return vertices[start[b] + ((k % n) + n) % n];
+  }
+};
+
+}  // namespace dda

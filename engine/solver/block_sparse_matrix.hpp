@@ -1,0 +1,45 @@
+#pragma once
+// The global DDA matrix: symmetric, 6×6 blocks, one block row per rock block,
+// a block (i, j) wherever blocks i and j are in contact. Stored in full
+// (both (i,j) and (j,i)) as compressed block rows so that each row is owned
+// by exactly one task in assembly and in the mat-vec: deterministic and
+// lock-free.
+#include <Eigen/SparseCore>
+#include <span>
+#include <utility>
+#include <vector>
+
+#include "core/types.hpp"
+
+namespace dda {
+
+class BlockSparseMatrix {
+ public:
+  // n block rows; `pairs` are the off-diagonal couplings (i < j), sorted and unique.
+  void set_structure(int n, std::span<const std::pair<int, int>> pairs);
+
+  int rows() const { return n_; }
+  int nonzero_blocks() const { return static_cast<int>(cols_.size()); }
+  int row_begin(int i) const { return row_start_[i]; }
+  int row_end(int i) const { return row_start_[i + 1]; }
+  int col(int k) const { return cols_[k]; }
+  int diagonal(int i) const { return diag_[i]; }
+  // Index of block (i, j) in values(), or -1 when not stored.
+  int find(int i, int j) const;
+
+  Mat6& value(int k) { return values_[k]; }
+  const Mat6& value(int k) const { return values_[k]; }
+
+  // y = A·x, parallel over block rows.
+  void multiply(const VecX& x, VecX& y) const;
+
+  // Scalar sparse copy (test oracle and debugging only; not used in the step).
+  Eigen::SparseMatrix<double> to_sparse() const;
+
+ private:
+  int n_ = 0;
+  std::vector<int> row_start_, cols_, diag_;
+  std::vector<Mat6> values_;
+};
+
+}  // namespace dda

@@ -1,0 +1,78 @@
+#pragma once
+// Linear solvers behind one interface (as MFEM's linalg/solvers.hpp): an
+// operator, tolerance, iteration limit, warm start from the given x, an
+// optional monitor, and a report that says when the solve failed instead of
+// carrying on. A distributed backend can slot in behind the same interface.
+#include <functional>
+#include <memory>
+#include <vector>
+
+#include "solver/block_sparse_matrix.hpp"
+
+namespace dda {
+
+struct SolveReport {
+  bool converged = false;
+  bool finite = true;  // false when a NaN/Inf appeared
+  int iterations = 0;
+  double relative_residual = 0;
+};
+
+class LinearSolver {
+ public:
+  virtual ~LinearSolver() = default;
+  virtual void set_operator(const BlockSparseMatrix& a) = 0;
+  // Solves A·x = b; x holds the initial guess on entry.
+  virtual SolveReport solve(const VecX& b, VecX& x) = 0;
+
+  double tolerance = 1e-10;  // on ‖b − A·x‖ / ‖b‖
+  int max_iterations = 1000;
+  // Called after every iteration with (iteration, relative residual).
+  std::function<void(int, double)> monitor;
+};
+
+// Preconditioner interface: z = M⁻¹ r.
+class Preconditioner {
+ public:
+  virtual ~Preconditioner() = default;
+  virtual void setup(const BlockSparseMatrix& a) = 0;
+  virtual void apply(const VecX& r, VecX& z) const = 0;
+};
+
+// Block-Jacobi: the inverse of each 6×6 diagonal block (Cholesky).
+class BlockJacobi final : public Preconditioner {
+ public:
+  void setup(const BlockSparseMatrix& a) override;
+  void apply(const VecX& r, VecX& z) const override;
+
+ private:
+  std::vector<Mat6> inverse_;
+};
+
+// Preconditioned conjugate gradients with a parallel mat-vec and
+// deterministic (fixed-chunk) dot products.
+class PcgSolver final : public LinearSolver {
+ public:
+  explicit PcgSolver(std::unique_ptr<Preconditioner> pre = std::make_unique<BlockJacobi>());
+  void set_operator(const BlockSparseMatrix& a) override;
+  SolveReport solve(const VecX& b, VecX& x) override;
+
+ private:
+  const BlockSparseMatrix* a_ = nullptr;
+  std::unique_ptr<Preconditioner> pre_;
+  VecX r_, z_, p_, ap_;  // reused between solves: no allocation in the step loop
+};
+
+// Sparse direct LDLᵀ (Eigen). A test oracle, not used by the engine's step.
+class DirectSolver final : public LinearSolver {
+ public:
+  void set_operator(const BlockSparseMatrix& a) override { a_ = &a; }
+  SolveReport solve(const VecX& b, VecX& x) override;
+
+ private:
+  const BlockSparseMatrix* a_ = nullptr;
+};
+
+double deterministic_dot(const VecX& a, const VecX& b);
+
+}  // namespace dda

@@ -1,0 +1,427 @@
+// The DDA time step: a table of contents first, then one function per stage.
+#include <algorithm>
+#include <cmath>
+
+#include "block/displacement.hpp"
+#include "contact/broad_phase.hpp"
+#include "contact/narrow_phase.hpp"
+#include "core/error.hpp"
+#include "core/parallel.hpp"
+#include "geometry/polygon.hpp"
+#include "world/world_impl.hpp"
+
+namespace dda {
+
+StepStats World::step() {
+  if (!prepared_) prepare_first_step();
+  resolve_controls();
+  Impl& m = *impl_;
+  StepStats stats;
+  const auto t_start = Clock::now();
+  m.arena->execute([&] {
+    auto t0 = Clock::now();
+    detect_contacts();
+    stats.t_detect = seconds_since(t0);
+
+    // Solve; when the step is rejected, restore the contact states, cut Δt
+    // and redo it (ControlStep).
+    const std::vector<Contact> contacts_at_start = contacts_;
+    m.open_close_iterations = m.cg_iterations = 0;
+    m.t_assemble = m.t_solve = m.t_check = 0;
+    for (;;) {
+      const Rejection r = static_cast<Rejection>(solve_step(dt_));
+      if (r == Rejection::None) break;
+      if (stats.step_cuts == controls_.max_step_cuts)
+        throw Error(msg("step ", steps_ + 1, " at t = ", time_, " s: ", describe(r), " even after ", stats.step_cuts,
+                        " cuts of the time step (down to ", dt_, " s). ",
+                        r == Rejection::PenetrationTooDeep ? "Raise g0 (contact stiffness) or g2." : "Check loads, g0 and g2."));
+      ++stats.step_cuts;
+      contacts_ = contacts_at_start;
+      dt_ *= controls_.cut_factor;
+    }
+    stats.open_close_iterations = m.open_close_iterations;
+    stats.cg_iterations = m.cg_iterations;
+    stats.t_assemble = m.t_assemble;
+    stats.t_solve = m.t_solve;
+    stats.t_check = m.t_check;
+    stats.dt = dt_;
+    stats.max_displacement_ratio = largest_step_displacement() / (controls_.g2 * half_height_);
+
+    t0 = Clock::now();
+    update(dt_);
+    stats.t_update = seconds_since(t0);
+  });
+  // After a clean step, let Δt grow back towards g1.
+  if (stats.step_cuts == 0) dt_ = std::min(m.g1, dt_ * 1.5);
+  stats.contacts = static_cast<int>(contacts_.size());
+  stats.closed_contacts = static_cast<int>(
+      std::count_if(contacts_.begin(), contacts_.end(), [](const Contact& c) { return c.state != ContactState::Open; }));
+  stats.t_total = seconds_since(t_start);
+  last_stats_ = stats;
+  return stats;
+}
+
+// ---- Stage: first-step checks ----------------------------------------------
+
+void World::prepare_first_step() {
+  if (block_count() == 0) throw Error("the model has no blocks");
+
+  // Blocks must not overlap at the start: a crossing of two edges, or a
+  // vertex inside another block, is a modelling error.
+  const BlockPolygons polys{vertex_start_, vertices_};
+  for (const auto& [a, b] : find_candidate_pairs(polys, 0.0)) {
+    const auto pa = polys.of(a), pb = polys.of(b);
+    for (std::size_t i = 0; i < pa.size(); ++i)
+      for (std::size_t j = 0; j < pb.size(); ++j)
+        if (segments_cross_properly(pa[i], pa[(i + 1) % pa.size()], pb[j], pb[(j + 1) % pb.size()]))
+          throw Error(msg("blocks ", a, " and ", b, " overlap at the start (edge ", i + 1, " of block ", a,
+                          " crosses edge ", j + 1, " of block ", b, ")"));
+    auto vertex_inside = [&](std::span<const Vec2> p, std::span<const Vec2> q, int pb_id, int qb_id) {
+      const double size = std::sqrt(std::abs(signed_area(q)));
+      for (std::size_t i = 0; i < p.size(); ++i) {
+        if (!point_in_polygon(q, p[i])) continue;
+        double depth = INFINITY;  // distance to q's boundary
+        for (std::size_t j = 0; j < q.size(); ++j) {
+          const Vec2 e = q[(j + 1) % q.size()] - q[j];
+          const double t = std::clamp((p[i] - q[j]).dot(e) / e.squaredNorm(), 0.0, 1.0);
+          depth = std::min(depth, (p[i] - (q[j] + t * e)).norm());
+        }
+        if (depth > 1e-9 * size)
+          throw Error(msg("blocks ", pb_id, " and ", qb_id, " overlap at the start (vertex ", i + 1, " of block ", pb_id,
+                          " lies inside block ", qb_id, ")"));
+      }
+    };
+    vertex_inside(pa, pb, a, b);
+    vertex_inside(pb, pa, b, a);
+  }
+  half_height_ = 0;
+  half_height_ = half_height();
+  if (!(half_height_ > 0)) throw Error("the model has no height (all vertices on one horizontal line)");
+  prepared_ = true;
+}
+
+void World::resolve_controls() {
+  const Controls& c = controls_;
+  auto require = [](bool ok, const std::string& what) {
+    if (!ok) throw Error(msg("controls: ", what));
+  };
+  require(std::isfinite(c.g0) && c.g0 >= 0, msg("g0 must be positive (or 0 for automatic), got ", c.g0));
+  require(std::isfinite(c.g1) && c.g1 >= 0, msg("g1 must be positive (or 0 for automatic), got ", c.g1));
+  require(std::isfinite(c.g2) && c.g2 > 0, msg("g2 must be positive, got ", c.g2));
+  require(std::isfinite(c.gg) && c.gg >= 0 && c.gg <= 1, msg("gg must lie in [0, 1], got ", c.gg));
+  require(std::isfinite(c.shear_ratio) && c.shear_ratio >= 0, msg("shear ratio must be zero or positive, got ", c.shear_ratio));
+  require(c.open_close_limit >= 1, msg("open-close limit must be at least 1, got ", c.open_close_limit));
+  require(std::isfinite(c.fixed_point_factor) && c.fixed_point_factor > 0,
+          msg("fixed-point factor must be positive, got ", c.fixed_point_factor));
+  require(c.gravity.allFinite(), "gravity is not finite");
+  require(c.cut_factor > 0 && c.cut_factor < 1, msg("cut factor must lie in (0, 1), got ", c.cut_factor));
+  require(c.max_step_cuts >= 0, "max step cuts must be zero or positive");
+  require(std::isfinite(c.cg_tolerance) && c.cg_tolerance > 0, msg("CG tolerance must be positive, got ", c.cg_tolerance));
+  require(c.threads >= 0, msg("threads must be zero (all cores) or positive, got ", c.threads));
+
+  for (int r = 0; r < rock_material_count(); ++r) validate(rocks_[r], msg("rock material ", r));
+  for (int j = 0; j < joint_material_count(); ++j) validate(joints_[j], msg("joint material ", j));
+
+  Impl& m = *impl_;
+  double e_max = 0;
+  for (const RockMaterial& r : rocks_) e_max = std::max(e_max, r.youngs);
+  m.g0 = c.g0 > 0 ? c.g0 : 50 * e_max;
+  m.g1 = c.g1 > 0 ? c.g1 : suggested_time_step();
+  if (dt_ <= 0 || dt_ > m.g1) dt_ = m.g1;
+  if (m.arena_threads != c.threads || !m.arena) {
+    m.arena = c.threads > 0 ? std::make_unique<tbb::task_arena>(c.threads) : std::make_unique<tbb::task_arena>();
+    m.arena_threads = c.threads;
+  }
+  m.elastic.resize(rocks_.size());
+  for (std::size_t r = 0; r < rocks_.size(); ++r) m.elastic[r] = elastic_matrix(rocks_[r], c.plane);
+  m.solver.tolerance = c.cg_tolerance;
+  m.solver.max_iterations = c.cg_max_iterations > 0 ? c.cg_max_iterations : static_cast<int>(60 * block_count() + 100);
+}
+
+// ---- Stage: DetectContacts --------------------------------------------------
+
+void World::detect_contacts() {
+  Impl& m = *impl_;
+  const BlockPolygons polys{vertex_start_, vertices_};
+  // Search range: 2.5 × the largest allowed step displacement (Shi's choice),
+  // so any contact that can close during the step is in the list.
+  NarrowPhaseSettings settings;
+  settings.range = 2.5 * controls_.g2 * half_height_;
+  const auto pairs = find_candidate_pairs(polys, settings.range);
+  std::vector<Contact> found = dda::detect_contacts(polys, edge_joint_, pairs, settings);
+
+  // Carry each contact's state over from the previous step (same vertex and
+  // edge); new contacts start locked when touching, open otherwise.
+  std::vector<int> order(contacts_.size());
+  for (std::size_t i = 0; i < order.size(); ++i) order[i] = static_cast<int>(i);
+  std::sort(order.begin(), order.end(), [&](int x, int y) { return identity_less(contacts_[x], contacts_[y]); });
+  m.kinematics.resize(found.size());
+  parallel_for_each(found.size(), [&](std::size_t i) {
+    Contact& c = found[i];
+    const auto it = std::lower_bound(order.begin(), order.end(), c,
+                                     [&](int x, const Contact& key) { return identity_less(contacts_[x], key); });
+    const bool known = it != order.end() && same_identity(contacts_[*it], c);
+    if (known) {
+      const Contact& old = contacts_[*it];
+      c.state = old.state;
+      c.intact = old.intact;
+      c.ref_param = old.ref_param;
+      c.ref_valid = old.ref_valid;
+      c.slide_sign = old.slide_sign;
+      c.normal_force = old.normal_force;
+      c.shear_force = old.shear_force;
+    }
+    m.kinematics[i] = contact_kinematics(polys, centroid_, c);
+    if (!known) {
+      const bool touching = m.kinematics[i].d0 >= -1e-9 * m.kinematics[i].edge_length;
+      c.state = touching ? ContactState::Locked : ContactState::Open;
+      c.intact = touching && m.first_detection;
+    }
+    c.penetration = m.kinematics[i].d0;
+  });
+  contacts_ = std::move(found);
+  m.first_detection = false;
+
+  // Matrix shape: one off-diagonal block per contacting block pair.
+  std::vector<std::pair<int, int>> coupled;
+  coupled.reserve(contacts_.size());
+  for (const Contact& c : contacts_) coupled.emplace_back(std::min(c.vblock, c.eblock), std::max(c.vblock, c.eblock));
+  std::sort(coupled.begin(), coupled.end());
+  coupled.erase(std::unique(coupled.begin(), coupled.end()), coupled.end());
+  const int n = static_cast<int>(block_count());
+  m.matrix.set_structure(n, coupled);
+  const std::size_t nc = contacts_.size();
+  m.entry_ve.resize(nc);
+  m.entry_ev.resize(nc);
+  m.row_start.assign(n + 1, 0);
+  for (std::size_t i = 0; i < nc; ++i) {
+    m.entry_ve[i] = m.matrix.find(contacts_[i].vblock, contacts_[i].eblock);
+    m.entry_ev[i] = m.matrix.find(contacts_[i].eblock, contacts_[i].vblock);
+    ++m.row_start[contacts_[i].vblock + 1];
+    ++m.row_start[contacts_[i].eblock + 1];
+  }
+  for (int b = 0; b < n; ++b) m.row_start[b + 1] += m.row_start[b];
+  m.row_contacts.resize(m.row_start[n]);
+  std::vector<int> fill(m.row_start.begin(), m.row_start.end() - 1);
+  for (std::size_t i = 0; i < nc; ++i) {  // ascending i: each row's list is in contact order
+    m.row_contacts[fill[contacts_[i].vblock]++] = static_cast<int>(i);
+    m.row_contacts[fill[contacts_[i].eblock]++] = static_cast<int>(i);
+  }
+}
+
+// ---- Stage: open-close loop { Assemble → Solve → CheckContacts } -------------
+
+int World::solve_step(double dt) {
+  Impl& m = *impl_;
+  auto t0 = Clock::now();
+  assemble_block_terms(dt);
+  m.t_assemble += seconds_since(t0);
+
+  m.iterate.resize(contacts_.size());
+  for (std::size_t i = 0; i < contacts_.size(); ++i) m.iterate[i] = {m.kinematics[i].s0, contacts_[i].normal_force};
+  // Warm start: the previous step's displacements.
+  const int n = static_cast<int>(block_count());
+  m.solution.resize(6 * n);
+  for (int b = 0; b < n; ++b) m.solution.segment<6>(6 * b) = last_displacement_[b];
+
+  bool settled = false;
+  for (int it = 0; it < controls_.open_close_limit && !settled; ++it) {
+    ++m.open_close_iterations;
+    t0 = Clock::now();
+    assemble_contacts();
+    m.t_assemble += seconds_since(t0);
+
+    t0 = Clock::now();
+    m.solver.set_operator(m.matrix);
+    const SolveReport report = m.solver.solve(m.rhs, m.solution);
+    m.cg_iterations += report.iterations;
+    m.t_solve += seconds_since(t0);
+    if (!report.finite || !m.solution.allFinite()) {
+      // Name the first block whose load or displacement is not finite.
+      for (int b = 0; b < n; ++b)
+        if (!m.rhs.segment<6>(6 * b).allFinite() || !m.solution.segment<6>(6 * b).allFinite())
+          throw Error(msg("step ", steps_ + 1, " at t = ", time_, " s diverged: block ", b,
+                          " has a non-finite ", m.rhs.segment<6>(6 * b).allFinite() ? "displacement" : "load",
+                          " (check material constants, loads, g0 and the time step)"));
+      throw Error(msg("step ", steps_ + 1, " at t = ", time_, " s diverged: the linear solve produced non-finite values"));
+    }
+    if (!report.converged) return static_cast<int>(Rejection::SolverNotConverged);
+
+    t0 = Clock::now();
+    settled = !check_contacts();
+    m.t_check += seconds_since(t0);
+  }
+  if (!settled) return static_cast<int>(Rejection::OpenCloseUnsettled);
+  if (largest_step_displacement() > controls_.g2 * half_height_) return static_cast<int>(Rejection::DisplacementTooLarge);
+  if (deepest_penetration() > controls_.g2 * half_height_) return static_cast<int>(Rejection::PenetrationTooDeep);
+  return static_cast<int>(Rejection::None);
+}
+
+void World::assemble_block_terms(double dt) {
+  Impl& m = *impl_;
+  const int n = static_cast<int>(block_count());
+  m.own_k.resize(n);
+  m.own_f.resize(n);
+  const Vec2 g = controls_.gravity;
+  const double gg = controls_.gg;
+  parallel_for_each(n, [&](std::size_t b) {
+    Mat6 k = Mat6::Zero();
+    Vec6 f = Vec6::Zero();
+    const double area = area_[b];
+    // Elasticity and initial stress act on the strain terms (εx, εy, γxy).
+    k.bottomRightCorner<3, 3>() += area * m.elastic[material_[b]];
+    f.tail<3>() -= area * stress_[b];
+    // Inertia (Shi): with d = v0·Δt + a·Δt²/2 the inertia force is
+    // -ρ∫TᵀT(2/Δt²·d - 2/Δt·v0), v0 = gg × last velocity.
+    const double rho = mass_[b] / area;
+    const Mat6 tt = integrated_tt(area, sxx_[b], syy_[b], sxy_[b]);
+    k += (2 * rho / (dt * dt)) * tt;
+    f += (2 * rho / dt) * (tt * (gg * velocity_[b]));
+    // Body force.
+    f[0] += mass_[b] * g.x();
+    f[1] += mass_[b] * g.y();
+    m.own_k[b] = k;
+    m.own_f[b] = f;
+  });
+  // Point loads and fixed points: few, added serially in a fixed order.
+  for (const PointLoad& p : point_loads_)
+    m.own_f[p.block] += displacement_matrix(p.point, centroid_[p.block]).transpose() * p.force;
+  const double kf = controls_.fixed_point_factor * m.g0;
+  for (const FixedPoint& p : fixed_points_) {
+    const Mat26 t = displacement_matrix(p.point, centroid_[p.block]);
+    m.own_k[p.block] += kf * t.transpose() * t;
+    // The spring pulls the point back to where it started, residual included.
+    m.own_f[p.block] += kf * t.transpose() * (p.origin - p.point);
+  }
+}
+
+void World::assemble_contacts() {
+  Impl& m = *impl_;
+  const int n = static_cast<int>(block_count());
+  const double kn = m.g0, ks = controls_.shear_ratio * m.g0;
+  m.rhs.resize(6 * n);
+  // Each block row is gathered by one task, adding its contacts in contact
+  // order: no races, and the same sums whatever the thread count.
+  parallel_for_each(n, [&](std::size_t bi) {
+    const int b = static_cast<int>(bi);
+    for (int e = m.matrix.row_begin(b); e < m.matrix.row_end(b); ++e) m.matrix.value(e).setZero();
+    Mat6& diag = m.matrix.value(m.matrix.diagonal(b));
+    diag = m.own_k[b];
+    Vec6 f = m.own_f[b];
+    for (int r = m.row_start[b]; r < m.row_start[b + 1]; ++r) {
+      const int i = m.row_contacts[r];
+      const Contact& c = contacts_[i];
+      if (c.state == ContactState::Open) continue;
+      const ContactKinematics& k = m.kinematics[i];
+      const bool is_vertex_block = c.vblock == b;
+      const Vec6& en_self = is_vertex_block ? k.en_v : k.en_e;
+      const Vec6& en_other = is_vertex_block ? k.en_e : k.en_v;
+      const Vec6& es_self = is_vertex_block ? k.es_v : k.es_e;
+      const Vec6& es_other = is_vertex_block ? k.es_e : k.es_v;
+      Mat6& off = m.matrix.value(is_vertex_block ? m.entry_ve[i] : m.entry_ev[i]);
+      // Normal spring on dn = d0 + en·D.
+      diag.noalias() += kn * en_self * en_self.transpose();
+      off.noalias() += kn * en_self * en_other.transpose();
+      f -= kn * k.d0 * en_self;
+      if (c.state == ContactState::Locked) {
+        // Shear spring on ds = s0 + es·D.
+        diag.noalias() += ks * es_self * es_self.transpose();
+        off.noalias() += ks * es_self * es_other.transpose();
+        f -= ks * m.iterate[i].s0 * es_self;
+      } else {
+        // Sliding: friction N·tanφ against the sliding direction, with N
+        // from the previous iteration.
+        const double friction = std::max(0.0, m.iterate[i].normal_force) * std::tan(deg_to_rad(joints_[c.joint].friction_deg));
+        f -= c.slide_sign * friction * es_self;
+      }
+    }
+    m.rhs.segment<6>(6 * b) = f;
+  }, 16);
+}
+
+bool World::check_contacts() {
+  Impl& m = *impl_;
+  const ContactSprings springs{m.g0, controls_.shear_ratio * m.g0};
+  const std::size_t nc = contacts_.size();
+  std::vector<char> changed(nc, 0);
+  parallel_for_each(nc, [&](std::size_t i) {
+    Contact& c = contacts_[i];
+    const ContactKinematics& k = m.kinematics[i];
+    const auto dv = m.solution.segment<6>(6 * c.vblock);
+    const auto de = m.solution.segment<6>(6 * c.eblock);
+    const double dn = k.d0 + k.en_v.dot(dv) + k.en_e.dot(de);
+    const double ds_step = k.es_v.dot(dv) + k.es_e.dot(de);
+    const double ds = m.iterate[i].s0 + ds_step;
+    changed[i] = update_contact_state(c, m.iterate[i], joints_[c.joint], springs, dn, ds, ds_step);
+    c.penetration = dn;
+    c.normal_force = m.iterate[i].normal_force;
+    c.shear_force = c.state == ContactState::Locked ? springs.ks * ds
+                    : c.state == ContactState::Sliding
+                        ? -c.slide_sign * std::max(0.0, c.normal_force) * std::tan(deg_to_rad(joints_[c.joint].friction_deg))
+                        : 0.0;
+  }, 256);
+  return std::any_of(changed.begin(), changed.end(), [](char x) { return x != 0; });
+}
+
+double World::largest_step_displacement() const {
+  const Impl& m = *impl_;
+  return parallel_max<double>(block_count(), 0.0, [&](std::size_t b) {
+    const Vec6 d = m.solution.segment<6>(6 * b);
+    double worst = 0;
+    for (int v = vertex_start_[b]; v < vertex_start_[b + 1]; ++v)
+      worst = std::max(worst, point_displacement(vertices_[v], centroid_[b], d).norm());
+    return worst;
+  });
+}
+
+double World::deepest_penetration() const {
+  return parallel_max<double>(contacts_.size(), 0.0, [&](std::size_t i) {
+    return contacts_[i].state == ContactState::Open ? 0.0 : contacts_[i].penetration;
+  });
+}
+
+// ---- Stage: Update ----------------------------------------------------------
+
+void World::update(double dt) {
+  Impl& m = *impl_;
+  const int n = static_cast<int>(block_count());
+  auto d_of = [&](BlockId b) -> Vec6 { return m.solution.segment<6>(6 * b); };
+  // Material points first: they move with their block's old centroid.
+  for (FixedPoint& p : fixed_points_) p.point += point_displacement(p.point, centroid_[p.block], d_of(p.block));
+  for (PointLoad& p : point_loads_) p.point += point_displacement(p.point, centroid_[p.block], d_of(p.block));
+  for (TrackedPoint& p : tracked_) p.point += point_displacement(p.point, centroid_[p.block], d_of(p.block));
+
+  const double gg = controls_.gg;
+  parallel_for_each(n, [&](std::size_t b) {
+    const Vec6 d = d_of(static_cast<BlockId>(b));
+    for (int v = vertex_start_[b]; v < vertex_start_[b + 1]; ++v) vertices_[v] += point_displacement(vertices_[v], centroid_[b], d);
+    const PolygonMoments pm = polygon_moments(std::span<const Vec2>(vertices_).subspan(vertex_start_[b], vertex_start_[b + 1] - vertex_start_[b]));
+    centroid_[b] = pm.centroid;
+    area_[b] = pm.area;
+    sxx_[b] = pm.sxx;
+    syy_[b] = pm.syy;
+    sxy_[b] = pm.sxy;
+    stress_[b] += m.elastic[material_[b]] * d.tail<3>();
+    // v1 = 2d/Δt - v0 (exact for constant acceleration).
+    velocity_[b] = 2.0 / dt * d - gg * velocity_[b];
+    last_displacement_[b] = d;
+  }, 32);
+
+  // Contacts: a contact that ends the step locked keeps (or takes) its shear
+  // reference point; others drop it.
+  parallel_for_each(contacts_.size(), [&](std::size_t i) {
+    Contact& c = contacts_[i];
+    if (c.state == ContactState::Locked) {
+      if (!c.ref_valid || m.iterate[i].s0 != m.kinematics[i].s0) {
+        c.ref_param = m.kinematics[i].param;
+        c.ref_valid = true;
+      }
+    } else {
+      c.ref_valid = false;
+    }
+  }, 256);
+  time_ += dt;
+  ++steps_;
+}
+
+}  // namespace dda

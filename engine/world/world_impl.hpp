@@ -1,0 +1,62 @@
+#pragma once
+// Private to the World: scratch buffers that live from step to step (so the
+// step loop does not allocate) and the reasons a step attempt is rejected.
+#include <tbb/task_arena.h>
+
+#include <chrono>
+#include <memory>
+#include <vector>
+
+#include "contact/contact_law.hpp"
+#include "solver/linear_solver.hpp"
+#include "world/world.hpp"
+
+namespace dda {
+
+using Clock = std::chrono::steady_clock;
+inline double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
+
+// Why a step attempt was rejected (the step is then redone with a smaller Δt).
+enum class Rejection : int { None, OpenCloseUnsettled, DisplacementTooLarge, PenetrationTooDeep, SolverNotConverged };
+
+inline const char* describe(Rejection r) {
+  switch (r) {
+    case Rejection::None: return "accepted";
+    case Rejection::OpenCloseUnsettled: return "the open-close iteration did not settle";
+    case Rejection::DisplacementTooLarge: return "a vertex moved more than the g2 bound in one step";
+    case Rejection::PenetrationTooDeep: return "a contact penetrated deeper than the g2 bound";
+    case Rejection::SolverNotConverged: return "the linear solver did not converge";
+  }
+  return "?";
+}
+
+// Scratch that lives from step to step so the loop does not allocate.
+struct World::Impl {
+  // Resolved controls (auto values filled in).
+  double g0 = 0, g1 = 0;
+  std::unique_ptr<tbb::task_arena> arena;
+  int arena_threads = -1;
+
+  BlockSparseMatrix matrix;
+  PcgSolver solver;
+  VecX rhs, solution;
+  std::vector<Mat6> own_k;  // block terms of the diagonal (elastic, inertia, fixed points)
+  std::vector<Vec6> own_f;  // block terms of the right-hand side
+  std::vector<Mat3> elastic;  // per rock material
+
+  // Per contact, parallel to World::contacts_.
+  std::vector<ContactKinematics> kinematics;
+  std::vector<ContactIterate> iterate;
+  std::vector<int> entry_ve, entry_ev;  // matrix entries (vblock, eblock) and (eblock, vblock)
+  // Contacts touching each block, in contact order: the row gather lists.
+  std::vector<int> row_start, row_contacts;
+
+  bool first_detection = true;  // contacts found before the first step are intact joints
+  Rejection last_rejection = Rejection::None;
+
+  int open_close_iterations = 0, cg_iterations = 0;
+  double t_assemble = 0, t_solve = 0, t_check = 0;
+};
+
+
+}  // namespace dda

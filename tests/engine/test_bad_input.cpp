@@ -1,0 +1,94 @@
+// User errors give dda::Error naming the object and the cause.
+#include <gtest/gtest.h>
+
+#include "core/error.hpp"
+#include "scenes.hpp"
+
+using namespace dda;
+
+namespace {
+template <typename F>
+std::string error_of(F&& f) {
+  try {
+    f();
+  } catch (const Error& e) {
+    return e.what();
+  }
+  return "(no error)";
+}
+#define EXPECT_MESSAGE(expr, part) EXPECT_NE(error_of([&] { expr; }).find(part), std::string::npos) << error_of([&] { expr; })
+}  // namespace
+
+TEST(BadInput, DegeneratePolygonsNameTheBlock) {
+  World w;
+  const int rock = w.add_rock_material(test::granite());
+  w.add_block(test::rectangle(0, 0, 1, 1), rock);
+  EXPECT_MESSAGE(w.add_block({{0, 0}, {1, 0}, {2, 0}}, rock), "block 1: polygon has zero area");
+  EXPECT_MESSAGE(w.add_block({{0, 0}, {4, 0}, {4, 4}, {1, -1}}, rock), "block 1: polygon is self-intersecting");
+  EXPECT_MESSAGE(w.add_block({{0, 0}, {1, 0}, {1, 0}, {1, 1}}, rock), "block 1: vertices 2 and 3 are repeated");
+  EXPECT_MESSAGE(w.add_block(test::rectangle(5, 0, 1, 1), 3), "block 1: unknown rock material 3");
+  EXPECT_EQ(w.block_count(), 1u) << "a rejected block must not be half-added";
+}
+
+TEST(BadInput, MaterialConstantsAreChecked) {
+  World w;
+  EXPECT_MESSAGE(w.add_rock_material(RockMaterial{NAN, 5e9, 0.25}), "density is not a finite number");
+  EXPECT_MESSAGE(w.add_rock_material(RockMaterial{2600, 0, 0.25}), "Young's modulus must be positive");
+  EXPECT_MESSAGE(w.add_rock_material(RockMaterial{2600, -1, 0.25}), "Young's modulus must be positive");
+  EXPECT_MESSAGE(w.add_rock_material(RockMaterial{2600, 5e9, 0.5}), "Poisson's ratio must lie in [0, 0.5)");
+  EXPECT_MESSAGE(w.add_joint_material(JointMaterial{NAN, 0, 0}), "friction angle");
+  EXPECT_MESSAGE(w.add_joint_material(JointMaterial{30, -1, 0}), "cohesion must be zero or positive");
+  // A constant broken after creation is caught at the next step.
+  const int rock = w.add_rock_material(test::granite());
+  w.add_block(test::rectangle(0, 0, 1, 1), rock);
+  w.rock_material(rock).youngs = NAN;
+  EXPECT_MESSAGE(w.step(), "rock material 0: Young's modulus is not a finite number");
+}
+
+TEST(BadInput, ControlsAreChecked) {
+  World w;
+  w.add_block(test::rectangle(0, 0, 1, 1), w.add_rock_material(test::granite()));
+  w.controls().g2 = -1;
+  EXPECT_MESSAGE(w.step(), "g2 must be positive");
+  w.controls().g2 = 0.01;
+  w.controls().gg = 2;
+  EXPECT_MESSAGE(w.step(), "gg must lie in [0, 1]");
+}
+
+TEST(BadInput, OverlappingBlocksAtTheStartAreNamed) {
+  World w;
+  const int rock = w.add_rock_material(test::granite());
+  w.add_block(test::rectangle(0, 0, 1, 1), rock);
+  w.add_block(test::rectangle(0.5, 0.5, 1, 1), rock);
+  EXPECT_MESSAGE(w.step(), "blocks 0 and 1 overlap at the start");
+
+  World inside;
+  inside.add_block(test::rectangle(0, 0, 2, 2), inside.add_rock_material(test::granite()));
+  inside.add_block({{0.5, 0.5}, {1.5, 0.5}, {1, 1.5}}, 0);
+  EXPECT_MESSAGE(inside.step(), "overlap at the start");
+
+  // Touching blocks are fine.
+  World touching;
+  touching.add_block(test::rectangle(0, 0, 1, 1), touching.add_rock_material(test::granite()));
+  touching.add_block(test::rectangle(1, 0, 1, 1), 0);
+  EXPECT_NO_THROW(touching.step());
+}
+
+TEST(BadInput, DivergingStepNamesTheBlock) {
+  World w;
+  const int rock = w.add_rock_material(test::granite());
+  w.add_block(test::rectangle(0, 0, 1, 1), rock);
+  const BlockId b = w.add_block(test::rectangle(3, 0, 1, 1), rock);
+  Vec6 v = Vec6::Zero();
+  v[0] = 1e306;  // finite, but the inertia term overflows
+  w.set_block_velocity(b, v);
+  EXPECT_MESSAGE(w.step(), "diverged: block 1 has a non-finite load");
+  EXPECT_MESSAGE(w.set_block_velocity(b, Vec6::Constant(NAN)), "block 1: velocity is not finite");
+}
+
+TEST(BadInput, EmptyModelAndUnknownIds) {
+  World w;
+  EXPECT_MESSAGE(w.step(), "the model has no blocks");
+  EXPECT_MESSAGE(w.block_centroid(0), "no block 0");
+  EXPECT_MESSAGE(w.set_point_load(4, Vec2(1, 0)), "no point load 4");
+}
