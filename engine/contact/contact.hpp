@@ -27,6 +27,10 @@ struct Contact {
   // Share of joint length this contact stands for (cohesion and tension act
   // over it): half the overlap of two facing edges; 0 at a corner contact.
   double length = 0;
+  // Spring scale in (0, 1]: 1 except for facing edges that overlap by less
+  // than 5 % of the shorter edge, whose springs ramp in with the overlap (see
+  // narrow_phase.hpp).
+  double scale = 1;
   // Shear reference: the point on the edge (parameter 0..1) where the vertex
   // locked; valid while locked.
   double ref_param = 0;

@@ -59,7 +59,7 @@ struct PairDetector {
   std::vector<Contact>& out;
   std::vector<std::pair<int, int>> covered;  // (block, vertex) already in a facing-edge contact
 
-  void add(int vb, int vertex, int eb, int edge, double length) {
+  void add(int vb, int vertex, int eb, int edge, double length, double scale = 1) {
     Contact c;
     c.vblock = vb;
     c.vertex = vertex;
@@ -67,6 +67,7 @@ struct PairDetector {
     c.edge = edge;
     c.joint = edge_joint[blocks.start[eb] + edge];
     c.length = length;
+    c.scale = scale;
     out.push_back(c);
   }
   bool is_covered(int b, int k) const {
@@ -93,24 +94,25 @@ struct PairDetector {
         if (std::min(glo, ghi) > s.range || std::min(glo, ghi) < -max_depth) continue;
         const double share = 0.5 * (hi - lo);
         const double tie = 0.05 * shorter;
+        const double scale = std::min(1.0, (hi - lo) / tie);
         const int a_lo = wrap(a, ia + 1), a_hi = ia;            // a's vertices at the low / high end
         const int b_lo = ib, b_hi = wrap(b, ib + 1);            // b's vertices at the low / high end
         // Low end of the overlap (near eb's start).
         if (s1 >= -tie) {
-          add(a, a_lo, b, ib, share);
+          add(a, a_lo, b, ib, share, scale);
           covered.emplace_back(a, a_lo);
           if (s1 <= tie) covered.emplace_back(b, b_lo);
         } else {
-          add(b, b_lo, a, ia, share);
+          add(b, b_lo, a, ia, share, scale);
           covered.emplace_back(b, b_lo);
         }
         // High end (near eb's end).
         if (s0 <= eb.length + tie) {
-          add(a, a_hi, b, ib, share);
+          add(a, a_hi, b, ib, share, scale);
           covered.emplace_back(a, a_hi);
           if (s0 >= eb.length - tie) covered.emplace_back(b, b_hi);
         } else {
-          add(b, b_hi, a, ia, share);
+          add(b, b_hi, a, ia, share, scale);
           covered.emplace_back(b, b_hi);
         }
       }

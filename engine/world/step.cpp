@@ -298,7 +298,7 @@ void World::assemble_block_terms(double dt) {
 void World::assemble_contacts() {
   Impl& m = *impl_;
   const int n = static_cast<int>(block_count());
-  const double kn = m.g0, ks = controls_.shear_ratio * m.g0;
+  const double kn_full = m.g0, ks_full = controls_.shear_ratio * m.g0;
   m.rhs.resize(6 * n);
   // Each block row is gathered by one task, adding its contacts in contact
   // order: no races, and the same sums whatever the thread count.
@@ -319,6 +319,7 @@ void World::assemble_contacts() {
       const Vec6& es_self = is_vertex_block ? k.es_v : k.es_e;
       const Vec6& es_other = is_vertex_block ? k.es_e : k.es_v;
       Mat6& off = m.matrix.value(is_vertex_block ? m.entry_ve[i] : m.entry_ev[i]);
+      const double kn = c.scale * kn_full, ks = c.scale * ks_full;
       // Normal spring on dn = d0 + en·D.
       diag.noalias() += kn * en_self * en_self.transpose();
       off.noalias() += kn * en_self * en_other.transpose();
@@ -341,11 +342,11 @@ void World::assemble_contacts() {
 
 bool World::check_contacts() {
   Impl& m = *impl_;
-  const ContactSprings springs{m.g0, controls_.shear_ratio * m.g0};
   const std::size_t nc = contacts_.size();
   std::vector<char> changed(nc, 0);
   parallel_for_each(nc, [&](std::size_t i) {
     Contact& c = contacts_[i];
+    const ContactSprings springs{c.scale * m.g0, c.scale * controls_.shear_ratio * m.g0};
     const ContactKinematics& k = m.kinematics[i];
     const auto dv = m.solution.segment<6>(6 * c.vblock);
     const auto de = m.solution.segment<6>(6 * c.eblock);
