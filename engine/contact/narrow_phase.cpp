@@ -17,26 +17,32 @@ struct Edge {
   double length;
 };
 
-Edge edge_of(const BlockPolygons& blocks, int b, int k) {
-  Edge e;
-  e.p0 = blocks.vertex(b, k);
-  e.p1 = blocks.vertex(b, k + 1);
-  const Vec2 d = e.p1 - e.p0;
-  e.length = d.norm();
-  e.t = d / e.length;
-  e.n = Vec2(e.t.y(), -e.t.x());
-  return e;
-}
+// Edge k of every block and the convexity of vertex k, computed once per
+// detection and shared by all pairs (indexed like blocks.vertices).
+struct EdgeTable {
+  std::vector<Edge> edge;
+  std::vector<char> convex;
+};
 
-// Unit directions from vertex k along its two edges.
-std::pair<Vec2, Vec2> wedge_of(const BlockPolygons& blocks, int b, int k) {
-  const Vec2& v = blocks.vertex(b, k);
-  return {(blocks.vertex(b, k - 1) - v).normalized(), (blocks.vertex(b, k + 1) - v).normalized()};
-}
-
-bool is_convex(const BlockPolygons& blocks, int b, int k) {
-  const Vec2& v = blocks.vertex(b, k);
-  return cross(v - blocks.vertex(b, k - 1), blocks.vertex(b, k + 1) - v) > 0;
+EdgeTable make_edge_table(const BlockPolygons& blocks) {
+  EdgeTable table;
+  table.edge.resize(blocks.vertices.size());
+  table.convex.resize(blocks.vertices.size());
+  parallel_for_each(blocks.count(), [&](std::size_t bi) {
+    const int b = static_cast<int>(bi);
+    for (int k = 0; k < blocks.size(b); ++k) {
+      Edge& e = table.edge[blocks.start[b] + k];
+      e.p0 = blocks.vertex(b, k);
+      e.p1 = blocks.vertex(b, k + 1);
+      const Vec2 d = e.p1 - e.p0;
+      e.length = d.norm();
+      e.t = d / e.length;
+      e.n = Vec2(e.t.y(), -e.t.x());
+      const Vec2& v = blocks.vertex(b, k);
+      table.convex[blocks.start[b] + k] = cross(v - blocks.vertex(b, k - 1), blocks.vertex(b, k + 1) - v) > 0;
+    }
+  }, 64);
+  return table;
 }
 
 bool facing(const Edge& e, const Edge& f, double parallel_sin) {
@@ -54,6 +60,7 @@ constexpr double kWedgeSlack = 1e-3;
 
 struct PairDetector {
   const BlockPolygons& blocks;
+  const EdgeTable& table;
   std::span<const int> edge_joint;
   const NarrowPhaseSettings& s;
   std::vector<Contact>& out;
@@ -74,12 +81,16 @@ struct PairDetector {
     return std::find(covered.begin(), covered.end(), std::pair<int, int>(b, k)) != covered.end();
   }
   int wrap(int b, int k) const { return ((k % blocks.size(b)) + blocks.size(b)) % blocks.size(b); }
+  const Edge& edge_of(int b, int k) const { return table.edge[blocks.start[b] + wrap(b, k)]; }
+  bool is_convex(int b, int k) const { return table.convex[blocks.start[b] + wrap(b, k)]; }
+  // Unit directions from vertex k along its two edges.
+  std::pair<Vec2, Vec2> wedge_of(int b, int k) const { return {-edge_of(b, k - 1).t, edge_of(b, k).t}; }
 
   void facing_edges(int a, int b) {
     for (int ia = 0; ia < blocks.size(a); ++ia) {
-      const Edge ea = edge_of(blocks, a, ia);
+      const Edge& ea = edge_of(a, ia);
       for (int ib = 0; ib < blocks.size(b); ++ib) {
-        const Edge eb = edge_of(blocks, b, ib);
+        const Edge& eb = edge_of(b, ib);
         if (!facing(ea, eb, s.parallel_sin)) continue;
         // Positions along eb of ea's ends (ea runs the other way).
         const double s0 = (ea.p0 - eb.p0).dot(eb.t), s1 = (ea.p1 - eb.p0).dot(eb.t);
@@ -123,24 +134,25 @@ struct PairDetector {
   bool aligned_corner(int x, int k, int y, int l) const {
     for (int ex : {k - 1, k})
       for (int ey : {l - 1, l})
-        if (facing(edge_of(blocks, x, wrap(x, ex)), edge_of(blocks, y, wrap(y, ey)), s.parallel_sin)) return true;
+        if (facing(edge_of(x, wrap(x, ex)), edge_of(y, wrap(y, ey)), s.parallel_sin)) return true;
     return false;
   }
 
   // Convex vertices of x near the interior of edges of y.
   void vertex_to_edge(int x, int y) {
     for (int k = 0; k < blocks.size(x); ++k) {
-      if (is_covered(x, k) || !is_convex(blocks, x, k)) continue;
+      if (is_covered(x, k) || !is_convex(x, k)) continue;
       const Vec2& v = blocks.vertex(x, k);
-      const auto wedge = wedge_of(blocks, x, k);
-      const Edge prev = edge_of(blocks, x, wrap(x, k - 1)), next = edge_of(blocks, x, k);
+      const auto wedge = wedge_of(x, k);
+      const Edge &prev = edge_of(x, k - 1), &next = edge_of(x, k);
       for (int f = 0; f < blocks.size(y); ++f) {
-        const Edge e = edge_of(blocks, y, f);
-        if ((v - e.p0).norm() <= s.range || (v - e.p1).norm() <= s.range) continue;  // vertex-vertex
+        const Edge& e = edge_of(y, f);
         const double along = (v - e.p0).dot(e.t);
         if (along <= 0 || along >= e.length) continue;
         const double gap = (v - e.p0).dot(e.n);
         if (gap > s.range || gap < -std::min(s.range, 0.25 * e.length)) continue;
+        if ((v - e.p0).squaredNorm() <= s.range * s.range || (v - e.p1).squaredNorm() <= s.range * s.range)
+          continue;  // near an end: a vertex-vertex approach
         if (facing(prev, e, s.parallel_sin) || facing(next, e, s.parallel_sin)) continue;
         if (entrance_score(wedge, e) < -kWedgeSlack) continue;
         add(x, k, y, f, 0.0);
@@ -156,16 +168,16 @@ struct PairDetector {
       for (int l = 0; l < blocks.size(b); ++l) {
         if (is_covered(b, l)) continue;
         const Vec2& vb = blocks.vertex(b, l);
-        if ((va - vb).norm() > s.range) continue;
+        if ((va - vb).squaredNorm() > s.range * s.range) continue;
         if (aligned_corner(a, k, b, l)) continue;
         struct Option { int vblock, vertex, eblock, edge; double score; };
         Option best{-1, -1, -1, -1, -kWedgeSlack};
         auto consider = [&](int x, int vx, int y, int ey) {
-          if (!is_convex(blocks, x, vx)) return;
-          const Edge e = edge_of(blocks, y, ey);
+          if (!is_convex(x, vx)) return;
+          const Edge& e = edge_of(y, ey);
           const double gap = (blocks.vertex(x, vx) - e.p0).dot(e.n);
           if (gap < -std::min(s.range, 0.25 * e.length)) return;
-          const double score = entrance_score(wedge_of(blocks, x, vx), e);
+          const double score = entrance_score(wedge_of(x, vx), e);
           if (score > best.score) best = {x, vx, y, ey, score};
         };
         consider(a, k, b, wrap(b, l - 1));
@@ -180,9 +192,10 @@ struct PairDetector {
 
 }  // namespace
 
-void detect_pair_contacts(const BlockPolygons& blocks, std::span<const int> edge_joint, int a, int b,
-                          const NarrowPhaseSettings& settings, std::vector<Contact>& out) {
-  PairDetector d{blocks, edge_joint, settings, out, {}};
+namespace {
+void detect_with_table(const BlockPolygons& blocks, const EdgeTable& table, std::span<const int> edge_joint, int a,
+                       int b, const NarrowPhaseSettings& settings, std::vector<Contact>& out) {
+  PairDetector d{blocks, table, edge_joint, settings, out, {}};
   const std::size_t first = out.size();
   d.facing_edges(a, b);
   d.vertex_to_edge(a, b);
@@ -200,15 +213,22 @@ void detect_pair_contacts(const BlockPolygons& blocks, std::span<const int> edge
   }
   out.resize(w);
 }
+}  // namespace
+
+void detect_pair_contacts(const BlockPolygons& blocks, std::span<const int> edge_joint, int a, int b,
+                          const NarrowPhaseSettings& settings, std::vector<Contact>& out) {
+  detect_with_table(blocks, make_edge_table(blocks), edge_joint, a, b, settings, out);
+}
 
 std::vector<Contact> detect_contacts(const BlockPolygons& blocks, std::span<const int> edge_joint,
                                      std::span<const std::pair<int, int>> pairs, const NarrowPhaseSettings& settings) {
+  const EdgeTable table = make_edge_table(blocks);
   const std::size_t chunks = chunk_count(pairs.size());
   std::vector<std::vector<Contact>> found(chunks);
   tbb::parallel_for(std::size_t(0), chunks, [&](std::size_t c) {
     const std::size_t end = std::min(pairs.size(), (c + 1) * kChunk);
     for (std::size_t p = c * kChunk; p < end; ++p)
-      detect_pair_contacts(blocks, edge_joint, pairs[p].first, pairs[p].second, settings, found[c]);
+      detect_with_table(blocks, table, edge_joint, pairs[p].first, pairs[p].second, settings, found[c]);
   });
   std::size_t total = 0;
   for (const auto& f : found) total += f.size();
