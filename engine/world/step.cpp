@@ -283,15 +283,68 @@ void World::assemble_block_terms(double dt) {
     m.own_k[b] = k;
     m.own_f[b] = f;
   });
-  // Point loads and fixed points: few, added serially in a fixed order.
-  for (const PointLoad& p : point_loads_)
-    m.own_f[p.block] += displacement_matrix(p.point, centroid_[p.block]).transpose() * p.force;
+  assemble_point_terms(dt);
+}
+
+// Terms at material points: few next to the blocks, added serially in a
+// fixed order. Histories are evaluated at the end of the step, t + Δt.
+void World::assemble_point_terms(double dt) {
+  Impl& m = *impl_;
+  const double t_end = time_ + dt;
+  auto add_force = [&](BlockId b, const Vec2& at, const Vec2& force) {
+    m.own_f[b] += displacement_matrix(at, centroid_[b]).transpose() * force;
+  };
+  // A spring of stiffness matrix k pulling the point towards `goal`.
+  auto add_spring = [&](BlockId b, const Vec2& at, const Eigen::Matrix2d& k, const Vec2& goal) {
+    const Mat26 t = displacement_matrix(at, centroid_[b]);
+    m.own_k[b] += t.transpose() * k * t;
+    m.own_f[b] += t.transpose() * (k * (goal - at));
+  };
+
+  for (const PointLoadHistory& h : point_load_histories_) point_loads_[h.load].force = h.direction * h.magnitude.value(t_end);
+  for (const PointLoad& p : point_loads_) add_force(p.block, p.point, p.force);
+
+  // SHI: ∫ Tᵀ(−p n) dl over a straight edge is l·Tᵀ(midpoint)·(−p n).
+  for (PressureLoad& load : pressure_loads_) {
+    if (load.from_history) load.pressure = load.history.value(t_end);
+    for (const EdgeRef& e : load.edges) {
+      const Vec2& a = vertices_[vertex_start_[e.block] + e.edge];
+      const Vec2& b = vertices_[vertex_start_[e.block] + (e.edge + 1) % (vertex_start_[e.block + 1] - vertex_start_[e.block])];
+      const Vec2 outward((b - a).y(), -(b - a).x());  // length l, outward for a counter-clockwise outline
+      add_force(e.block, 0.5 * (a + b), -load.pressure * outward);
+    }
+  }
+
   const double kf = controls_.fixed_point_factor * m.g0;
-  for (const FixedPoint& p : fixed_points_) {
+  const Eigen::Matrix2d stiff = kf * Eigen::Matrix2d::Identity();
+  // Fixed points: back to where they started, residual included.
+  for (const FixedPoint& p : fixed_points_) add_spring(p.block, p.point, stiff, p.origin);
+
+  // DHI: towards start + target, along the direction only when one is given.
+  for (DisplacementTarget& t : targets_) {
+    if (t.mode == DisplacementTarget::Displacement) t.target = t.history.value(t_end) * t.direction;
+    if (t.mode == DisplacementTarget::Velocity) t.target = t.history.integral(t_end) * t.direction;
+    if (t.direction.norm() > 0) {
+      // Only the component along the direction is driven: goal = point moved
+      // along the direction by what is still missing.
+      const double missing = (t.origin + t.target - t.point).dot(t.direction);
+      add_spring(t.block, t.point, kf * t.direction * t.direction.transpose(), t.point + missing * t.direction);
+    } else {
+      add_spring(t.block, t.point, stiff, t.origin + t.target);
+    }
+  }
+
+  // VBC dashpots and SBC springs. A dashpot's force at the end-of-step
+  // velocity v1 = T(2D/Δt − v0) is −c·v1: (2/Δt)·TᵀcT joins the matrix,
+  // TᵀcT·v0 the right-hand side (v0 = gg × last velocity).
+  for (const BoundaryPoint& p : boundary_points_) {
     const Mat26 t = displacement_matrix(p.point, centroid_[p.block]);
-    m.own_k[p.block] += kf * t.transpose() * t;
-    // The spring pulls the point back to where it started, residual included.
-    m.own_f[p.block] += kf * t.transpose() * (p.origin - p.point);
+    if (boundaries_[p.boundary].kind == BoundaryKind::Viscous) {
+      m.own_k[p.block] += (2.0 / dt) * t.transpose() * p.c * t;
+      m.own_f[p.block] += t.transpose() * (p.c * (t * (controls_.gg * velocity_[p.block])));
+    } else {
+      add_spring(p.block, p.point, p.k * Eigen::Matrix2d::Identity(), p.origin);
+    }
   }
 }
 
@@ -391,6 +444,15 @@ void World::update(double dt) {
   for (FixedPoint& p : fixed_points_) p.point += point_displacement(p.point, centroid_[p.block], d_of(p.block));
   for (PointLoad& p : point_loads_) p.point += point_displacement(p.point, centroid_[p.block], d_of(p.block));
   for (TrackedPoint& p : tracked_) p.point += point_displacement(p.point, centroid_[p.block], d_of(p.block));
+  for (DisplacementTarget& p : targets_) p.point += point_displacement(p.point, centroid_[p.block], d_of(p.block));
+  for (BoundaryPoint& p : boundary_points_) {
+    const Mat26 t = displacement_matrix(p.point, centroid_[p.block]);
+    // Force at the end of the step: −c·v1 (dashpot) or k·(start − position) (spring).
+    if (boundaries_[p.boundary].kind == BoundaryKind::Viscous)
+      p.force = -p.c * (t * (2.0 / dt * d_of(p.block) - controls_.gg * velocity_[p.block]));
+    p.point += point_displacement(p.point, centroid_[p.block], d_of(p.block));
+    if (boundaries_[p.boundary].kind == BoundaryKind::Spring) p.force = p.k * (p.origin - p.point);
+  }
 
   const double gg = controls_.gg;
   parallel_for_each(n, [&](std::size_t b) {

@@ -14,6 +14,7 @@
 #include "contact/contact.hpp"
 #include "core/material.hpp"
 #include "core/types.hpp"
+#include "loading/history.hpp"
 #include "solver/block_sparse_matrix.hpp"
 
 namespace dda {
@@ -34,6 +35,14 @@ struct Controls {
   int cg_max_iterations = 0;        // 0 → 10 × unknowns + 100
   int threads = 0;                  // 0 → every core
 };
+
+// An edge of a block: from vertex `edge` to `edge + 1` (counter-clockwise).
+struct EdgeRef {
+  BlockId block = -1;
+  int edge = -1;
+};
+
+enum class BoundaryKind { Viscous, Spring };
 
 // Stage times (seconds) and counts of one step, including redone attempts.
 struct StepStats {
@@ -90,6 +99,37 @@ class World {
   Vec2 tracked_displacement(int id) const;
   BlockId tracked_block(int id) const;
 
+  // ---- Loads and boundaries on edges (the paper's SHI, FHI, DHI, VBC, SBC) ---
+  // SHI: a pressure (Pa) on edges, normal to each edge and pushing into its
+  // block, integrated exactly along the edge (its current length and normal).
+  int add_pressure_load(const std::vector<EdgeRef>& edges, double pressure = 0);
+  void set_pressure(int id, double pressure);
+  void set_pressure_history(int id, History pressure);
+  // FHI: the point load's force becomes direction × magnitude(t).
+  void set_point_load_history(int id, const Vec2& direction, History magnitude);
+  // DHI: a stiff spring (fixed_point_factor × g0) pulls the material point to
+  // start + target. With a direction (normalised) it acts along it only and
+  // the target is a magnitude along it; with a zero direction it acts in both.
+  int add_displacement_target(BlockId b, const Vec2& point, const Vec2& direction = Vec2::Zero());
+  void set_target_displacement(int id, const Vec2& target);  // along a direction: target.x() is the magnitude
+  void set_target_history(int id, History displacement);       // magnitude along the direction
+  void set_target_velocity_history(int id, History velocity);  // integrated to displacement
+  Vec2 target_point_displacement(int id) const;                // the material point's displacement so far
+  Vec2 target_value(int id) const;                            // the last target applied (vector)
+
+  // Fixed boundary: fixed points at both ends of each edge.
+  void fix_edges(const std::vector<EdgeRef>& edges);
+  // VBC (Eqs. 6–12): at each end of each edge, a dashpot pair over half the
+  // edge length: traction −ρ(C_P v_n n + C_S v_s s), n the outward normal,
+  // with ρ, C_P = sqrt((K + 4G/3)/ρ), C_S = sqrt(G/ρ) of the edge's block.
+  int add_viscous_boundary(const std::vector<EdgeRef>& edges);
+  // SBC (Eq. 22): at each end of each edge a spring p·l·TᵀT to the point's
+  // starting position (Eq. 21, p without the edge length, when per_length is false).
+  int add_spring_boundary(const std::vector<EdgeRef>& edges, double p, bool per_length = true);
+  // Forces (N) the boundary's points exerted at the end of the last step.
+  std::vector<Vec2> boundary_point_forces(int id) const;
+  Vec2 boundary_force(int id) const;
+
   // ---- Stepping -------------------------------------------------------------
   StepStats step();
   // Δt from the paper's Eqs. 1–3 with a = 0.05 and b = 0.177:
@@ -137,7 +177,8 @@ class World {
   void resolve_controls();        // validate controls, fill in automatic g0 and g1
   void detect_contacts();         // broad + narrow phase, carry states, linearise, matrix shape
   int solve_step(double dt);      // loop { assemble, solve, check contacts }; 0 or a rejection
-  void assemble_block_terms(double dt);  // elastic, inertia, stress, loads, fixed points
+  void assemble_block_terms(double dt);  // elastic, inertia, stress, gravity per block
+  void assemble_point_terms(double dt);  // loads, fixed points, targets, boundaries at t + Δt
   void assemble_contacts();       // block terms + contact springs and friction into the matrix
   bool check_contacts();          // open-close decision; true when a contact changed
   double largest_step_displacement() const;
@@ -163,6 +204,22 @@ class World {
   struct PointLoad { BlockId block; Vec2 point; Vec2 force; };
   struct FixedPoint { BlockId block; Vec2 point; Vec2 origin; };
   struct TrackedPoint { BlockId block; Vec2 point; Vec2 origin; };
+  struct PressureLoad { std::vector<EdgeRef> edges; double pressure; History history; bool from_history; };
+  struct PointLoadHistory { int load; Vec2 direction; History magnitude; };
+  struct DisplacementTarget {
+    BlockId block; Vec2 point; Vec2 origin; Vec2 direction;  // zero direction: both components
+    Vec2 target = Vec2::Zero();  // current target (vector)
+    History history; enum { Fixed, Displacement, Velocity } mode = Fixed;
+  };
+  // A VBC dashpot (matrix c, N·s/m) or an SBC spring (stiffness k, N/m) at a material point.
+  struct BoundaryPoint { int boundary; BlockId block; Vec2 point; Vec2 origin; Eigen::Matrix2d c; double k; Vec2 force; };
+  struct Boundary { BoundaryKind kind; int first, count; };
+  std::vector<PressureLoad> pressure_loads_;
+  std::vector<PointLoadHistory> point_load_histories_;
+  std::vector<DisplacementTarget> targets_;
+  std::vector<BoundaryPoint> boundary_points_;
+  std::vector<Boundary> boundaries_;
+  void check_edges(const std::vector<EdgeRef>& edges, const std::string& what) const;
   std::vector<PointLoad> point_loads_;
   std::vector<FixedPoint> fixed_points_;
   std::vector<TrackedPoint> tracked_;

@@ -1,0 +1,45 @@
+#include "loading/history.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/error.hpp"
+
+namespace dda {
+
+History::History(std::vector<std::pair<double, double>> points, const std::string& what) {
+  if (points.empty()) throw Error(msg(what, ": needs at least one (t, value) point"));
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    const auto [t, v] = points[i];
+    if (!std::isfinite(t) || !std::isfinite(v))
+      throw Error(msg(what, ": point ", i + 1, " is not finite (t = ", t, ", value = ", v, ")"));
+    if (i > 0 && !(t > points[i - 1].first))
+      throw Error(msg(what, ": times must increase, but point ", i + 1, " has t = ", t, " after t = ", points[i - 1].first));
+    t_.push_back(t);
+    v_.push_back(v);
+  }
+  area_.resize(t_.size());
+  area_[0] = v_[0] * t_[0];  // constant first value from t = 0
+  for (std::size_t i = 1; i < t_.size(); ++i) area_[i] = area_[i - 1] + 0.5 * (v_[i] + v_[i - 1]) * (t_[i] - t_[i - 1]);
+}
+
+History History::constant(double value) { return History({{0.0, value}}, "constant history"); }
+
+double History::value(double t) const {
+  if (t_.empty()) return 0;
+  if (t <= t_.front()) return v_.front();
+  if (t >= t_.back()) return v_.back();
+  const std::size_t i = std::upper_bound(t_.begin(), t_.end(), t) - t_.begin();  // t_[i-1] < t ≤ t_[i]
+  const double s = (t - t_[i - 1]) / (t_[i] - t_[i - 1]);
+  return v_[i - 1] + s * (v_[i] - v_[i - 1]);
+}
+
+double History::integral(double t) const {
+  if (t_.empty()) return 0;
+  if (t <= t_.front()) return v_.front() * t;
+  if (t >= t_.back()) return area_.back() + v_.back() * (t - t_.back());
+  const std::size_t i = std::upper_bound(t_.begin(), t_.end(), t) - t_.begin();
+  return area_[i - 1] + 0.5 * (v_[i - 1] + value(t)) * (t - t_[i - 1]);
+}
+
+}  // namespace dda

@@ -1,0 +1,29 @@
+#pragma once
+// A time history: piecewise linear through (t, value) points, constant
+// before the first and after the last. Loads that follow a history are
+// evaluated by the engine at the end of each step (t + Δt), so a step that
+// is cut and redone still sees the right value.
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace dda {
+
+class History {
+ public:
+  History() = default;  // zero for all t
+  // Throws dda::Error (naming `what`) for no points, non-finite values or
+  // times that do not increase.
+  explicit History(std::vector<std::pair<double, double>> points, const std::string& what = "history");
+  static History constant(double value);
+
+  double value(double t) const;
+  // ∫₀ᵗ value dt (value before the first point is the first value).
+  double integral(double t) const;
+  bool empty() const { return t_.empty(); }
+
+ private:
+  std::vector<double> t_, v_, area_;  // area_[i] = ∫₀^{t_i}
+};
+
+}  // namespace dda
