@@ -77,7 +77,7 @@ bool update_contact_state(Contact& c, ContactIterate& it, const JointMaterial& j
     } else {
       c.state = ContactState::Locked;
     }
-  } else if (dn < 0) {
+  } else if (old_state == ContactState::Open ? dn <= k.tolerance : dn < -k.tolerance) {
     c.state = ContactState::Open;
   } else {
     switch (old_state) {
@@ -87,11 +87,11 @@ bool update_contact_state(Contact& c, ContactIterate& it, const JointMaterial& j
         it.s0 = 0;
         break;
       case ContactState::Locked:
-        if (std::abs(shear) > normal * tan_phi) slide_towards(ds);
+        if (std::abs(shear) > std::max(0.0, normal) * tan_phi + k.ks * k.tolerance) slide_towards(ds);
         break;
       case ContactState::Sliding:
         // Motion reversed against the assumed sliding direction: lock again.
-        if (ds_step * c.slide_sign < 0) {
+        if (ds_step * c.slide_sign < -k.tolerance) {
           c.state = ContactState::Locked;
           it.s0 = 0;
         }

@@ -34,6 +34,7 @@ struct ContactIterate {
 struct ContactSprings {
   double kn = 0;  // g0
   double ks = 0;  // shear_ratio × g0
+  double tolerance = 0;  // open-close hysteresis (m)
 };
 
 // Decide the contact's next state from the latest displacements. Returns true

@@ -54,6 +54,15 @@ bool segments_cross_properly(const Vec2& a, const Vec2& b, const Vec2& c, const 
   return ((d1 > 0 && d2 < 0) || (d1 < 0 && d2 > 0)) && ((d3 > 0 && d4 < 0) || (d3 < 0 && d4 > 0));
 }
 
+bool segments_cross_clearly(const Vec2& a, const Vec2& b, const Vec2& c, const Vec2& d, double tol) {
+  const double lab = (b - a).norm(), lcd = (d - c).norm();
+  if (lab == 0 || lcd == 0) return false;
+  // Signed distances of each end point from the other segment's line.
+  const double d1 = cross(b - a, c - a) / lab, d2 = cross(b - a, d - a) / lab;
+  const double d3 = cross(d - c, a - c) / lcd, d4 = cross(d - c, b - c) / lcd;
+  return ((d1 > tol && d2 < -tol) || (d1 < -tol && d2 > tol)) && ((d3 > tol && d4 < -tol) || (d3 < -tol && d4 > tol));
+}
+
 // Is p on the closed segment [a,b] (within a relative tolerance)?
 static bool on_segment(const Vec2& a, const Vec2& b, const Vec2& p, double tol) {
   const Vec2 ab = b - a;
@@ -88,7 +97,8 @@ void validate_simple_polygon(std::span<const Vec2> v, const std::string& what) {
     for (std::size_t j = i + 1; j < n; ++j) {
       const bool adjacent = (j == i + 1) || (i == 0 && j == n - 1);
       const Vec2 &c = v[j], &d = v[(j + 1) % n];
-      if (segments_cross_properly(a, b, c, d))
+      // A crossing within tol of an end point is caught as a touch below.
+      if (segments_cross_clearly(a, b, c, d, tol))
         throw Error(msg(what, ": polygon is self-intersecting (edges ", i + 1, " and ", j + 1, " cross)"));
       if (!adjacent && (on_segment(a, b, c, tol) || on_segment(a, b, d, tol) || on_segment(c, d, a, tol) ||
                         on_segment(c, d, b, tol)))

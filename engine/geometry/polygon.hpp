@@ -38,4 +38,12 @@ bool point_in_polygon(std::span<const Vec2> vertices, const Vec2& p);
 // Touching at end points or collinear overlap is not a proper crossing.
 bool segments_cross_properly(const Vec2& a, const Vec2& b, const Vec2& c, const Vec2& d);
 
+// Like segments_cross_properly, but each end point must lie more than `tol`
+// off the other segment's line. For nearly collinear segments the signs of
+// the orientation tests are rounding noise, and two collinear edges of one
+// outline (a block's side interrupted by a notch) would otherwise "cross" at
+// random; whether such segments touch is a distance question (see
+// validate_simple_polygon).
+bool segments_cross_clearly(const Vec2& a, const Vec2& b, const Vec2& c, const Vec2& d, double tol);
+
 }  // namespace dda

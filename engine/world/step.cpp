@@ -111,6 +111,8 @@ void World::resolve_controls() {
   require(std::isfinite(c.gg) && c.gg >= 0 && c.gg <= 1, msg("gg must lie in [0, 1], got ", c.gg));
   require(std::isfinite(c.shear_ratio) && c.shear_ratio >= 0, msg("shear ratio must be zero or positive, got ", c.shear_ratio));
   require(c.open_close_limit >= 1, msg("open-close limit must be at least 1, got ", c.open_close_limit));
+  require(std::isfinite(c.contact_tolerance) && c.contact_tolerance >= 0,
+          msg("contact tolerance must be zero or positive, got ", c.contact_tolerance));
   require(std::isfinite(c.fixed_point_factor) && c.fixed_point_factor > 0,
           msg("fixed-point factor must be positive, got ", c.fixed_point_factor));
   require(c.gravity.allFinite(), "gravity is not finite");
@@ -396,10 +398,11 @@ void World::assemble_contacts() {
 bool World::check_contacts() {
   Impl& m = *impl_;
   const std::size_t nc = contacts_.size();
+  const double tolerance = controls_.contact_tolerance * half_height_;
   std::vector<char> changed(nc, 0);
   parallel_for_each(nc, [&](std::size_t i) {
     Contact& c = contacts_[i];
-    const ContactSprings springs{c.scale * m.g0, c.scale * controls_.shear_ratio * m.g0};
+    const ContactSprings springs{c.scale * m.g0, c.scale * controls_.shear_ratio * m.g0, tolerance};
     const ContactKinematics& k = m.kinematics[i];
     const auto dv = m.solution.segment<6>(6 * c.vblock);
     const auto de = m.solution.segment<6>(6 * c.eblock);

@@ -27,6 +27,13 @@ struct Controls {
   double g2 = 0.005;         // largest step displacement / half the model height
   double gg = 1;             // dynamic parameter: share of velocity carried into the next step
   int open_close_limit = 6;  // open-close iterations before Δt is cut and the step redone
+  // Open-close hysteresis, as a fraction of half the model height: a closed
+  // contact opens once separated by more than this, an open one closes once
+  // penetrated by more; a locked contact slides once its shear force exceeds
+  // its strength by the shear spring times this. Without it, contacts that
+  // carry next to no force (the Poisson-loaded vertical joints of a wall)
+  // flip state on round-off and the iteration never settles.
+  double contact_tolerance = 1e-9;
   double fixed_point_factor = 100;  // fixed-point spring = factor × g0
   Vec2 gravity = Vec2::Zero();      // m/s²
   double cut_factor = 1.0 / 3.0;    // Δt multiplier when a step is redone
