@@ -5,6 +5,7 @@
 // carrying on. A distributed backend can slot in behind the same interface.
 #include <functional>
 #include <memory>
+#include <span>
 #include <vector>
 
 #include "solver/block_sparse_matrix.hpp"
@@ -35,6 +36,9 @@ class LinearSolver {
 class Preconditioner {
  public:
   virtual ~Preconditioner() = default;
+  // The blocks' centroids, for preconditioners that coarsen geometrically.
+  // Called before setup() whenever the geometry may have changed.
+  virtual void set_block_centroids(std::span<const Vec2> /*centroids*/) {}
   virtual void setup(const BlockSparseMatrix& a) = 0;
   virtual void apply(const VecX& r, VecX& z) const = 0;
 };
@@ -55,6 +59,8 @@ class PcgSolver final : public LinearSolver {
  public:
   explicit PcgSolver(std::unique_ptr<Preconditioner> pre = std::make_unique<BlockJacobi>());
   void set_operator(const BlockSparseMatrix& a) override;
+  Preconditioner& preconditioner() { return *pre_; }
+  void set_preconditioner(std::unique_ptr<Preconditioner> pre) { pre_ = std::move(pre); }
   SolveReport solve(const VecX& b, VecX& x) override;
 
  private:

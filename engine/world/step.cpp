@@ -8,6 +8,7 @@
 #include "core/error.hpp"
 #include "core/parallel.hpp"
 #include "geometry/polygon.hpp"
+#include "solver/preconditioner_choice.hpp"
 #include "world/world_impl.hpp"
 
 namespace dda {
@@ -136,6 +137,13 @@ void World::resolve_controls() {
   }
   m.elastic.resize(rocks_.size());
   for (std::size_t r = 0; r < rocks_.size(); ++r) m.elastic[r] = elastic_matrix(rocks_[r], c.plane);
+  // Preconditioner: chosen per step (Auto looks at the system), rebuilt only
+  // when the choice changes.
+  const Preconditioning kind = choose_preconditioning(c.preconditioner, SystemTraits{static_cast<int>(block_count()), 0.0});
+  if (!m.preconditioner_kind || *m.preconditioner_kind != kind) {
+    m.solver.set_preconditioner(make_preconditioner(kind));
+    m.preconditioner_kind = kind;
+  }
   m.solver.tolerance = c.cg_tolerance;
   m.solver.max_iterations = c.cg_max_iterations > 0 ? c.cg_max_iterations : static_cast<int>(60 * block_count() + 100);
 }
@@ -234,6 +242,7 @@ int World::solve_step(double dt) {
     m.t_assemble += seconds_since(t0);
 
     t0 = Clock::now();
+    m.solver.preconditioner().set_block_centroids(centroid_);
     m.solver.set_operator(m.matrix);
     const SolveReport report = m.solver.solve(m.rhs, m.solution);
     m.cg_iterations += report.iterations;

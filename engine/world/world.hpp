@@ -19,6 +19,12 @@
 
 namespace dda {
 
+// The PCG preconditioner. Block-Jacobi (the inverse of each block's 6×6
+// diagonal) is cheap and enough where inertia dominates (waves); a multigrid
+// preconditioner pays off where contacts and elasticity dominate (quasi-static
+// walls, slopes). Auto picks by the system at hand.
+enum class Preconditioning { Auto, BlockJacobi, Multigrid };
+
 struct Controls {
   PlaneMode plane = PlaneMode::Stress;
   double g0 = 0;             // normal contact spring (N/m per unit thickness); 0 → 50 × largest E
@@ -39,6 +45,7 @@ struct Controls {
   double cut_factor = 1.0 / 3.0;    // Δt multiplier when a step is redone
   int max_step_cuts = 20;           // cuts in one step before giving up (error)
   double cg_tolerance = 1e-10;      // PCG relative residual
+  Preconditioning preconditioner = Preconditioning::Auto;
   int cg_max_iterations = 0;        // 0 → 10 × unknowns + 100
   int threads = 0;                  // 0 → every core
 };

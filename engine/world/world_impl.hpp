@@ -5,6 +5,7 @@
 
 #include <chrono>
 #include <memory>
+#include <optional>
 #include <vector>
 
 #include "contact/contact_law.hpp"
@@ -39,6 +40,7 @@ struct World::Impl {
 
   BlockSparseMatrix matrix;
   PcgSolver solver;
+  std::optional<Preconditioning> preconditioner_kind;
   VecX rhs, solution;
   std::vector<Mat6> own_k;  // block terms of the diagonal (elastic, inertia, fixed points)
   std::vector<Vec6> own_f;  // block terms of the right-hand side
