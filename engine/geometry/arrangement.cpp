@@ -176,7 +176,9 @@ void intersect_pair(Round& r, int i, int j, double tol, std::vector<Split>& spli
     Vec2 foot;
     if (distance_to_segment(r.pos[p], r.pos[seg.pa], r.pos[seg.pb], foot) > tol) return;
     touched = true;
-    if (foot_priority(seg.rank) > r.rank[p] && foot != r.pos[p]) {
+    // A point already on the segment to rounding stays where it is: moving it
+    // by an ulp would only make the next round see a change.
+    if (foot_priority(seg.rank) > r.rank[p] && (foot - r.pos[p]).norm() > 1e-3 * tol) {
       r.pos.push_back(foot);
       r.rank.push_back(foot_priority(seg.rank));
       const int f = static_cast<int>(r.pos.size()) - 1;
@@ -367,7 +369,7 @@ Arrangement build_arrangement(std::span<const ArrangementSegment> segments, doub
   }
 
   Arrangement out;
-  constexpr int kMaxRounds = 8;
+  constexpr int kMaxRounds = 24;  // nearly coincident joints zip together over a few rounds
   for (int round = 1;; ++round) {
     const int old_points = static_cast<int>(r.pos.size());
 

@@ -21,7 +21,9 @@ StepStats World::step() {
   const auto t_start = Clock::now();
   m.arena->execute([&] {
     auto t0 = Clock::now();
+    const long searches_before = m.detections;
     detect_contacts();
+    stats.contacts_searched = m.detections != searches_before;
     stats.t_detect = seconds_since(t0);
 
     // Solve; when the step is rejected, restore the contact states, cut Δt
@@ -150,15 +152,51 @@ void World::resolve_controls() {
 
 // ---- Stage: DetectContacts --------------------------------------------------
 
+// Contacts are searched for over twice the range a step can close, and the
+// list is reused until a vertex has moved half the difference, or a block
+// turned by kRedetectRotation, since the last search (a Verlet list): no
+// contact that can close in the step is missed, and wave problems, whose
+// blocks move micrometres, search once. The kinematics are refreshed every step.
+namespace {
+constexpr double kSearchFactor = 2.0;
+constexpr double kRedetectRotation = 0.005;  // rad, well inside the facing-edge angle tolerance
+}  // namespace
+
+bool World::contact_list_is_stale() const {
+  const Impl& m = *impl_;
+  if (m.detected_vertices.size() != vertices_.size()) return true;
+  const double range = 2.5 * controls_.g2 * half_height_;
+  const double allowed = 0.5 * (kSearchFactor - 1.0) * range;
+  const double moved = parallel_max<double>(vertices_.size(), 0.0, [&](std::size_t v) {
+    return (vertices_[v] - m.detected_vertices[v]).squaredNorm();
+  });
+  const double turned = parallel_max<double>(block_count(), 0.0, [&](std::size_t b) { return std::abs(m.rotation_since_detection[b]); });
+  return moved > allowed * allowed || turned > kRedetectRotation || m.detected_range != range;
+}
+
 void World::detect_contacts() {
   Impl& m = *impl_;
   const BlockPolygons polys{vertex_start_, vertices_};
-  // Search range: 2.5 × the largest allowed step displacement (Shi's choice),
-  // so any contact that can close during the step is in the list.
+  if (!contact_list_is_stale()) {
+    // Same contacts: refresh their linearisation from the current geometry.
+    m.kinematics.resize(contacts_.size());
+    parallel_for_each(contacts_.size(), [&](std::size_t i) {
+      m.kinematics[i] = contact_kinematics(polys, centroid_, contacts_[i]);
+      contacts_[i].penetration = m.kinematics[i].d0;
+    }, 256);
+    return;
+  }
+  // Search range: 2.5 × the largest allowed step displacement (Shi's
+  // choice), so any contact that can close during the step is in the list.
+  const double range = 2.5 * controls_.g2 * half_height_;
   NarrowPhaseSettings settings;
-  settings.range = 2.5 * controls_.g2 * half_height_;
+  settings.range = kSearchFactor * range;
   const auto pairs = find_candidate_pairs(polys, settings.range);
   std::vector<Contact> found = dda::detect_contacts(polys, edge_joint_, pairs, settings);
+  m.detected_vertices = vertices_;
+  m.rotation_since_detection.assign(block_count(), 0.0);
+  m.detected_range = range;
+  ++m.detections;
 
   // Carry each contact's state over from the previous step (same vertex and
   // edge); new contacts start locked when touching, open otherwise.
@@ -480,6 +518,7 @@ void World::update(double dt) {
     // v1 = 2d/Δt - v0 (exact for constant acceleration).
     velocity_[b] = 2.0 / dt * d - gg * velocity_[b];
     last_displacement_[b] = d;
+    m.rotation_since_detection[b] += d[2];
   }, 32);
 
   // Contacts: a contact that ends the step locked keeps (or takes) its shear

@@ -66,6 +66,7 @@ struct StepStats {
   int step_cuts = 0;
   int contacts = 0;
   int closed_contacts = 0;
+  bool contacts_searched = false;  // a full contact search ran (else the list was reused)
   double max_displacement_ratio = 0;  // largest vertex displacement / (g2 bound)
   double t_detect = 0, t_assemble = 0, t_solve = 0, t_check = 0, t_update = 0, t_total = 0;
 };
@@ -190,6 +191,7 @@ class World {
   void prepare_first_step();      // validate the model once: materials, overlaps, g2 length
   void resolve_controls();        // validate controls, fill in automatic g0 and g1
   void detect_contacts();         // broad + narrow phase, carry states, linearise, matrix shape
+  bool contact_list_is_stale() const;
   int solve_step(double dt);      // loop { assemble, solve, check contacts }; 0 or a rejection
   void assemble_block_terms(double dt);  // elastic, inertia, stress, gravity per block
   void assemble_point_terms(double dt);  // loads, fixed points, targets, boundaries at t + Δt

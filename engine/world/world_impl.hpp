@@ -54,6 +54,11 @@ struct World::Impl {
   std::vector<int> row_start, row_contacts;
 
   bool first_detection = true;  // contacts found before the first step are intact joints
+  // The contact list's search state (see detect_contacts).
+  std::vector<Vec2> detected_vertices;
+  std::vector<double> rotation_since_detection;
+  double detected_range = 0;
+  long detections = 0;
   Rejection last_rejection = Rejection::None;
 
   int open_close_iterations = 0, cg_iterations = 0;
