@@ -53,6 +53,11 @@ double distance_to_segment(const Vec2& p, const Vec2& a, const Vec2& b, Vec2& fo
   return (p - foot).norm();
 }
 
+// Limits no usable DDA model comes near (tens of millions of blocks), so that
+// a typo in a spacing gives an error instead of exhausting memory.
+constexpr std::size_t kMaxGridEntries = 200'000'000;
+constexpr std::size_t kMaxSplits = 20'000'000;
+
 // ---- Broad phase ------------------------------------------------------------
 
 // Uniform grid over the segments' bounding box. Each segment is registered in
@@ -89,6 +94,9 @@ class SegmentGrid {
     for (int s = 0; s < static_cast<int>(r.segs.size()); ++s)
       for_each_cell(s, [&](std::size_t c) { ++start_[c + 1]; });
     for (std::size_t c = 1; c < start_.size(); ++c) start_[c] += start_[c - 1];
+    if (start_.back() > kMaxGridEntries)
+      throw Error(msg("block cutting: the joints are too many or too dense to cut (", r.segs.size(),
+                      " segments); check the joint spacings and trace lengths"));
     entries_.resize(start_.back());
     std::vector<std::size_t> fill(start_.begin(), start_.end() - 1);
     for (int s = 0; s < static_cast<int>(r.segs.size()); ++s)
@@ -370,6 +378,7 @@ Arrangement build_arrangement(std::span<const ArrangementSegment> segments, doub
 
   Arrangement out;
   constexpr int kMaxRounds = 24;  // nearly coincident joints zip together over a few rounds
+  std::vector<std::uint64_t> history;  // a hash of each round's vertices and edges
   for (int round = 1;; ++round) {
     const int old_points = static_cast<int>(r.pos.size());
 
@@ -377,7 +386,12 @@ Arrangement build_arrangement(std::span<const ArrangementSegment> segments, doub
     std::vector<Moved> moved;
     {
       const SegmentGrid grid(r, tol);
-      grid.for_each_candidate_pair([&](int i, int j) { intersect_pair(r, i, j, tol, splits, moved); });
+      grid.for_each_candidate_pair([&](int i, int j) {
+        intersect_pair(r, i, j, tol, splits, moved);
+        if (splits.size() > kMaxSplits)
+          throw Error(msg("block cutting: the joints cross more than ", kMaxSplits / 2,
+                          " times; check the joint spacings (a model this size cannot be run)"));
+      });
     }
 
     std::vector<int> reps;
@@ -429,10 +443,24 @@ Arrangement build_arrangement(std::span<const ArrangementSegment> segments, doub
                              [](const SubEdge& x, const SubEdge& y) { return x.lo == y.lo && x.hi == y.hi; }),
                  pieces.end());
 
-    // Settled when the vertices are the old points unchanged and no segment was split.
-    bool settled = round > 1 && pieces.size() == r.segs.size() && static_cast<int>(reps.size()) == old_points;
-    if (settled)
-      for (int p = 0; p < old_points && settled; ++p) settled = reps[p] == p;
+    // Settled when the round changed nothing: the vertices are the old points
+    // and the edges the old segments (both lists are in the same sorted
+    // order). A split that only re-finds an existing edge changes nothing.
+    bool same_vertices = round > 1 && static_cast<int>(reps.size()) == old_points;
+    for (int p = 0; p < old_points && same_vertices; ++p) same_vertices = reps[p] == p;
+    bool settled = same_vertices && pieces.size() == r.segs.size();
+    for (std::size_t k = 0; k < pieces.size() && settled; ++k) {
+      const Seg& old = r.segs[k];
+      settled = pieces[k].lo == std::min(old.pa, old.pb) && pieces[k].hi == std::max(old.pa, old.pb);
+    }
+    // Or when it went back to an earlier state: among vertices closer than a
+    // few tolerances, a crossing a hair from one vertex can snap to its
+    // neighbour and an edge swap back and forth between them for ever; any of
+    // those states is as good as another at this tolerance.
+    std::uint64_t state = 0x9E3779B97F4A7C15ull ^ reps.size();
+    for (const SubEdge& e : pieces) state = (state ^ (static_cast<std::uint64_t>(e.lo) << 32 | static_cast<std::uint32_t>(e.hi))) * 0x100000001B3ull;
+    if (same_vertices && std::find(history.begin(), history.end(), state) != history.end()) settled = true;
+    history.push_back(state);
 
     Round next;
     next.pos.reserve(reps.size());

@@ -16,12 +16,15 @@
 //     segment splits it there (T-junctions, joints through vertices, collinear
 //     overlaps); otherwise a proper crossing splits both;
 //  3. points within tol are snapped to one vertex, the highest-ranked point
-//     first, so domain corners and points on the boundary never move;
+//     first, so domain corners and points on the boundary never move; an end
+//     point moved onto a segment (a T-junction) follows its foot;
 //  4. segments are split at their vertices, and coincident pieces merged.
 // Snapping can move a vertex by up to tol, which may bring it within tol of
 // another edge, so the whole pass is repeated on the resulting edges until
-// nothing changes (usually one extra round). Throws dda::Error if it does not
-// settle.
+// nothing changes (usually one extra round; nearly coincident joints take a
+// few), or until it returns to an earlier state (an edge swapping between two
+// vertices a few tolerances apart). Throws dda::Error if it does not settle
+// within 24 rounds, or if the joints are far too many to cut.
 #include <span>
 #include <vector>
 

@@ -25,6 +25,7 @@ constexpr int kCornerRank = 3;
 // swallow real geometry.
 constexpr double kMaxRelativeSnap = 1e-3;
 constexpr int kMaxInnerCutPasses = 4;
+constexpr double kMaxSetCrossings = 5e6;
 constexpr int kMaxCleanupPasses = 64;
 
 bool finite(const Vec2& p) { return std::isfinite(p.x()) && std::isfinite(p.y()); }
@@ -177,15 +178,17 @@ Prepared prepare(const CutInput& in) {
 struct SourceInfo {
   EdgeTag tag;
   bool one_sided = false;  // a boundary: rock lies only to the left of the segment's direction
+  bool inner_cut = false;  // an automatic cut (inner_cut_material)
 };
 
 struct SegmentList {
   std::vector<ArrangementSegment> segments;
   std::vector<SourceInfo> info;
 
-  void add(const Vec2& a, const Vec2& b, int rank, int end_rank, const EdgeTag& tag, bool one_sided) {
+  void add(const Vec2& a, const Vec2& b, int rank, int end_rank, const EdgeTag& tag, bool one_sided,
+           bool inner_cut = false) {
     segments.push_back({a, b, rank, end_rank});
-    info.push_back({tag, one_sided});
+    info.push_back({tag, one_sided, inner_cut});
   }
 };
 
@@ -205,13 +208,27 @@ SegmentList collect_segments(const CutInput& in, const Prepared& p, const std::v
   for (const JointLine& line : in.lines)
     list.add(line.a, line.b, kJointRank, kJointRank, {EdgeKind::Joint, line.joint_material, -1}, false);
   for (const JointLine& cut : inner_cuts)
-    list.add(cut.a, cut.b, kJointRank, kJointRank, {EdgeKind::Joint, cut.joint_material, -1}, false);
+    list.add(cut.a, cut.b, kJointRank, kJointRank, {EdgeKind::Joint, cut.joint_material, -1}, false, true);
   const double margin = 0.01 * p.size + 10 * p.tol;
+  // Refuse early what would exhaust memory: two sets of total joint lengths
+  // L1 and L2 at angle Δ cross about L1·L2·|sin Δ| / A times in a box of area A.
+  std::vector<double> set_length(in.sets.size(), 0.0);
   for (std::size_t s = 0; s < in.sets.size(); ++s) {
     const EdgeTag tag{EdgeKind::Joint, in.sets[s].joint_material, -1};
-    for (const JointSegment& j : joint_set_segments(in.sets[s], static_cast<int>(s), p.box.lo, p.box.hi, margin))
+    for (const JointSegment& j : joint_set_segments(in.sets[s], static_cast<int>(s), p.box.lo, p.box.hi, margin)) {
       list.add(j.a, j.b, kJointRank, kJointRank, tag, false);
+      set_length[s] += (j.b - j.a).norm();
+    }
   }
+  const Vec2 wide = (p.box.hi - p.box.lo).array() + 2 * margin;
+  for (std::size_t a = 0; a < in.sets.size(); ++a)
+    for (std::size_t b = a + 1; b < in.sets.size(); ++b) {
+      const double angle = deg_to_rad(in.sets[a].dip_deg - in.sets[b].dip_deg);
+      const double crossings = set_length[a] * set_length[b] * std::abs(std::sin(angle)) / (wide.x() * wide.y());
+      if (crossings > kMaxSetCrossings)
+        throw Error(msg("joint sets ", a + 1, " and ", b + 1, " would cross about ", std::round(crossings),
+                        " times (limit ", kMaxSetCrossings, "): far more blocks than a model can run; check the spacings"));
+    }
   return list;
 }
 
@@ -248,6 +265,7 @@ class PlanarGraph {
   bool alive(int e) const { return alive_[e] != 0; }
   void kill(int e) { alive_[e] = 0; }
   bool one_sided(int e) const { return info_[source_[e]].one_sided; }
+  bool inner_cut(int e) const { return info_[source_[e]].inner_cut; }
   const EdgeTag& tag(int e) const { return info_[source_[e]].tag; }
   const Vec2& pos(int vtx) const { return v_[vtx]; }
   int origin(int h) const { return (h & 1) ? to_[h >> 1] : from_[h >> 1]; }
@@ -597,22 +615,27 @@ int merge_slivers(PlanarGraph& g, const CutInput& in, double tol) {
       if (reported_count++ < 5) reported.push_back(msg("area ", face.area, " at ", point_text(where)));
       continue;
     }
-    touched.clear();
-    int h = face.first;
-    do {
-      const int e = h >> 1;
-      const int other = g.face_of(h ^ 1);
-      if (!g.one_sided(e) && other >= 0 && other != f && faces[other].area > 0) {
-        if (shared[other] == 0) touched.push_back(other);
-        shared[other] += g.length(e);
-      }
-      h = g.next(h);
-    } while (h != face.first);
+    // Across an automatic cut only if nothing else is shared: merging across
+    // it would undo the cut and bring back the loop it cut free.
     int best = -1;
-    for (int o : touched) {
-      if (best < 0 || shared[o] > shared[best] || (shared[o] == shared[best] && o < best)) best = o;
+    for (const bool across_cuts : {false, true}) {
+      touched.clear();
+      int h = face.first;
+      do {
+        const int e = h >> 1;
+        const int other = g.face_of(h ^ 1);
+        if (!g.one_sided(e) && (across_cuts || !g.inner_cut(e)) && other >= 0 && other != f && faces[other].area > 0) {
+          if (shared[other] == 0) touched.push_back(other);
+          shared[other] += g.length(e);
+        }
+        h = g.next(h);
+      } while (h != face.first);
+      for (int o : touched) {
+        if (best < 0 || shared[o] > shared[best] || (shared[o] == shared[best] && o < best)) best = o;
+      }
+      for (int o : touched) shared[o] = 0;
+      if (best >= 0) break;
     }
-    for (int o : touched) shared[o] = 0;
     if (best < 0)
       throw Error(msg("a block of area ", face.area, " at ", point_text(where),
                       " is below the minimum block area but shares no joint with another block to merge into"));
@@ -644,7 +667,8 @@ bool goes_straight(const Vec2& u, const Vec2& v, const Vec2& w, double tol) {
 }
 
 // The outline of face f with only its true corners. Returns the signed area
-// removed with straight-on vertices (to rounding, zero).
+// removed with straight-on vertices: zero to rounding, unless snapping bent a
+// joint by up to the tolerance there.
 double block_outline(const PlanarGraph& g, const PlanarGraph::Face& face, double tol, CutBlock& block) {
   std::vector<Vec2> pts;
   std::vector<EdgeTag> tags;

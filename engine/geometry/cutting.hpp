@@ -42,7 +42,9 @@ struct JointSet {
   double dip_sd_deg = 0;
   double trace_sd = 0;
   // Seed of the set's random numbers (trace phase of non-persistent sets and
-  // the variations above). The same seed gives the same joints on every platform.
+  // the variations above). The same seed gives the same joints with any
+  // compiler and standard library: the generator (SplitMix64) and the normal
+  // sampling are written out in geometry/random.hpp, not taken from <random>.
   std::uint64_t seed = 0;
 };
 
@@ -61,9 +63,12 @@ struct MaterialRegion {
   int rock_material = 0;
 };
 
+// Blocks thinner on average than 8 snap tolerances are artefacts of nearly
+// coincident joints and are always merged; the policy is for blocks that are
+// real but smaller than min_block_area.
 enum class SliverPolicy {
-  Merge,  // merge each block below min_block_area into the neighbour sharing the longest edge
-  Error,  // throw dda::Error listing the slivers
+  Merge,  // merge each such block into the neighbour sharing the longest joint length with it
+  Error,  // throw dda::Error listing them (count, area and place of the first five)
 };
 
 struct CutInput {
@@ -162,7 +167,12 @@ struct BlockSet {
   double total_area() const;
 };
 
-// Cuts the domain into blocks. Throws dda::Error, naming the input item and
+// Cuts the domain into blocks, in reading order (rows of centroids from the
+// bottom, left to right). Deterministic: the same input gives the same blocks,
+// bit for bit. The block areas sum to the domain area minus the holes to
+// rounding; where snapping had to move vertices (joints nearly touching),
+// by at most about the snap tolerance times the joint length involved.
+// Throws dda::Error, naming the input item and
 // the cause, for unusable input: a domain or hole that is not a simple
 // polygon, a hole outside the domain or crossing its boundary or another hole,
 // non-finite numbers, non-positive spacing, a joint set that would produce an

@@ -12,7 +12,7 @@ namespace {
 
 // Generous limits that no usable model reaches but a typo (spacing 1e-9)
 // does: past them we refuse instead of exhausting memory.
-constexpr double kMaxLinesPerSet = 1e6;
+constexpr double kMaxLinesPerSet = 1e5;
 constexpr double kMaxTracesPerSet = 2e7;
 
 // Tags of the random streams, so the gap after line k and line k's own

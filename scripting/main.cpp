@@ -1,0 +1,142 @@
+// The dda executable:
+//   dda run SCRIPT.lua [--out DIR] [--threads N] [--set NAME=VALUE]... [--quiet]
+//                      [--frames N [--frame-field F] [--frame-size WxH]] [-- ARGS...]
+//   dda console [SCRIPT.lua] [--out DIR] [--threads N] [--set NAME=VALUE]...
+//   dda SCRIPT.lua ...      (same as dda run)
+//   dda --help | --version
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <string>
+
+#include "scripting.hpp"
+
+#ifdef DDA_HAVE_RENDER
+#include "core/error.hpp"
+#include "scene/field.hpp"
+#endif
+
+namespace {
+
+const char* kUsage =
+    "usage:\n"
+    "  dda run SCRIPT.lua [options] [-- ARGS...]   run a script (batch)\n"
+    "  dda console [SCRIPT.lua] [options]          interactive prompt (runs SCRIPT first)\n"
+    "  dda SCRIPT.lua [options]                    same as dda run\n"
+    "options:\n"
+    "  --out DIR          output folder for monitor CSV files (default: out)\n"
+    "  --threads N        worker threads for every model (0: every core); overrides the script\n"
+    "  --set NAME=VALUE   a parameter the script reads with dda.param(\"NAME\", default)\n"
+    "  --quiet            no progress line\n"
+    "  --frames N         every model writes a PNG frame every N steps into DIR/frames\n"
+    "  --frame-field F    the field of those frames: sigma_xx (default), sigma_yy, tau_xy,\n"
+    "                     sigma_1, von_mises, velocity, displacement, none\n"
+    "  --frame-size WxH   their size in pixels (default 1280x720)\n"
+    "exit status: 0 success, 1 error in the script, 2 bad command line, 130 interrupted (Ctrl-C)\n";
+
+int usage_error(const char* fmt, const char* arg) {
+  std::fprintf(stderr, "dda: ");
+  std::fprintf(stderr, fmt, arg);
+  std::fprintf(stderr, "\n%s", kUsage);
+  return 2;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  using dda::script::RunOptions;
+  if (argc < 2) {
+    std::fputs(kUsage, stderr);
+    return 2;
+  }
+  int i = 1;
+  std::string command = argv[i];
+  if (command == "--help" || command == "-h" || command == "help") {
+    std::fputs(kUsage, stdout);
+    return 0;
+  }
+  if (command == "--version") {
+    std::printf("dda 0.1 (Lua %s.%s)\n", LUA_VERSION_MAJOR, LUA_VERSION_MINOR);
+    return 0;
+  }
+  if (command == "run" || command == "console") {
+    ++i;
+  } else if (command.size() > 4 && command.compare(command.size() - 4, 4, ".lua") == 0) {
+    command = "run";
+  } else {
+    return usage_error("unknown command '%s'", argv[1]);
+  }
+
+  RunOptions opt;
+  for (; i < argc; ++i) {
+    const std::string a = argv[i];
+    auto value = [&](const char* name) -> const char* {
+      if (i + 1 >= argc) return nullptr;
+      (void)name;
+      return argv[++i];
+    };
+    if (a == "--") {
+      for (++i; i < argc; ++i) opt.script_args.push_back(argv[i]);
+      break;
+    } else if (a == "--out") {
+      const char* v = value("--out");
+      if (!v || !*v) return usage_error("%s needs a folder", "--out");
+      opt.session.out_dir = v;
+    } else if (a == "--threads") {
+      const char* v = value("--threads");
+      char* end = nullptr;
+      const long n = v ? std::strtol(v, &end, 10) : -1;
+      if (!v || *end != '\0' || n < 0 || n > 4096)
+        return usage_error("--threads needs a whole number >= 0, got '%s'", v ? v : "");
+      opt.session.threads = static_cast<int>(n);
+    } else if (a == "--set") {
+      const char* v = value("--set");
+      const char* eq = v ? std::strchr(v, '=') : nullptr;
+      if (!v || !eq || eq == v) return usage_error("--set needs NAME=VALUE, got '%s'", v ? v : "");
+      opt.session.params[std::string(v, eq)] = std::string(eq + 1);
+    } else if (a.rfind("--set=", 0) == 0 || a.rfind("--out=", 0) == 0 || a.rfind("--threads=", 0) == 0) {
+      return usage_error("write '%s' with a space instead of '=' after the option", a.c_str());
+    } else if (a == "--frames") {
+      const char* v = value("--frames");
+      char* end = nullptr;
+      const long n = v ? std::strtol(v, &end, 10) : -1;
+      if (!v || *end != '\0' || n < 1) return usage_error("--frames needs a whole number of steps >= 1, got '%s'", v ? v : "");
+#ifndef DDA_HAVE_RENDER
+      return usage_error("%s: this dda was built without the renderer", "--frames");
+#endif
+      opt.session.frames_every = n;
+    } else if (a == "--frame-field") {
+      const char* v = value("--frame-field");
+      if (!v || !*v) return usage_error("%s needs a field name", "--frame-field");
+#ifdef DDA_HAVE_RENDER
+      try {
+        dda::render::parse_field(v);
+      } catch (const dda::Error& e) {
+        return usage_error("--frame-field: %s", e.what());
+      }
+#endif
+      opt.session.frames_field = v;
+    } else if (a == "--frame-size") {
+      const char* v = value("--frame-size");
+      int w = 0, h = 0;
+      char tail = 0;
+      if (!v || std::sscanf(v, "%dx%d%c", &w, &h, &tail) != 2 || w < 16 || h < 16)
+        return usage_error("--frame-size needs WIDTHxHEIGHT (e.g. 1280x720), got '%s'", v ? v : "");
+      opt.session.frames_width = w;
+      opt.session.frames_height = h;
+    } else if (a == "--quiet" || a == "-q") {
+      opt.session.quiet = true;
+    } else if (a.rfind("--", 0) == 0) {
+      return usage_error("unknown option '%s'", a.c_str());
+    } else if (opt.script.empty()) {
+      opt.script = a;
+    } else {
+      return usage_error("unexpected argument '%s' (script arguments go after --)", a.c_str());
+    }
+  }
+  if (command == "run") {
+    if (opt.script.empty()) return usage_error("%s", "dda run needs a script");
+    return dda::script::run_batch(opt);
+  }
+  return dda::script::run_console(opt);
+}

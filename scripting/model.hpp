@@ -1,0 +1,233 @@
+#pragma once
+// The model a script builds: a dda::World plus what the Lua layer keeps beside
+// it: the geometry input for block cutting, which block edges lie on the
+// domain or hole boundaries, time-varying loads, and monitors with their CSV
+// files. Lua-free except that time histories are evaluated on the calling
+// lua_State (once per step, before World::step, never inside parallel work).
+#include <lua.hpp>
+
+#include <cstdint>
+#include <cstdio>
+#include <filesystem>
+#include <memory>
+#include <optional>
+#include <span>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "geometry/cutting.hpp"
+#include "lua_support.hpp"
+#include "world/world.hpp"
+
+namespace dda::script {
+
+// What a block edge was made from.
+enum class EdgeKind : std::uint8_t {
+  Joint,   // a joint (between two generated blocks)
+  Domain,  // the outer boundary of the domain
+  Hole,    // the boundary of hole `hole`
+  Free,    // an edge of a block added explicitly
+};
+struct EdgeTag {
+  EdgeKind kind = EdgeKind::Free;
+  int hole = -1;  // 0-based hole index for EdgeKind::Hole
+};
+
+// Edge `edge` (vertex edge → edge+1, counter-clockwise) of block `block`.
+using EdgeRef = dda::EdgeRef;
+
+// ---- Monitors -------------------------------------------------------------
+enum class Field : std::uint8_t { Sxx, Syy, Txy, Vx, Vy, Ux, Uy, X, Y };
+const char* field_name(Field f);
+std::optional<Field> parse_field(std::string_view name);
+std::string field_list();  // "sxx, syy, txy, vx, vy, ux, uy, x, y"
+
+struct Monitor {
+  std::string name;
+  std::filesystem::path path;  // CSV file
+  std::vector<Field> fields;
+  Vec2 point;        // where it was placed
+  int tracked = -1;  // World tracked point
+  int every = 1;     // record every N steps
+  bool started = false;
+  std::vector<long> steps;
+  std::vector<double> times;
+  std::vector<std::vector<double>> values;  // values[field][row]
+  std::FILE* file = nullptr;
+
+  Monitor() = default;
+  Monitor(const Monitor&) = delete;
+  Monitor& operator=(const Monitor&) = delete;
+  ~Monitor();
+  void close();
+};
+
+// ---- Loads ----------------------------------------------------------------
+// The force of a point load: (fx, fy) histories or a function returning both,
+// evaluated here once per step before the step at its planned end time; or a
+// direction times a magnitude history (the paper's FHI), which a constant or
+// a {t, value} table hands to the engine (evaluated at each step's end).
+struct ForceInput {
+  VecTimeInput xy;
+  bool along = false;
+  Vec2 direction = Vec2::UnitX();  // unit vector when `along`
+  TimeInput magnitude;
+  bool engine_driven() const { return along && !magnitude.is_function(); }
+  bool constant() const { return along ? magnitude.is_constant() : xy.is_constant(); }
+  Vec2 at(lua_State* L, double t) const { return along ? Vec2(direction * magnitude.at(L, t)) : xy.at(L, t); }
+};
+
+struct ScriptPointLoad {
+  int world_id = -1;
+  BlockId block = -1;
+  Vec2 point;
+  ForceInput force;
+  bool engine_history = false;  // the World holds a history for it (all later values go through one)
+  Vec2 current = Vec2::Zero();  // last value set from here
+};
+
+// Prescribed displacements (the paper's DHI): engine targets at material
+// points, all driven by one input.
+struct ScriptTarget {
+  enum class Mode { Vector, Displacement, Velocity };
+  std::vector<int> world_ids;
+  Mode mode = Mode::Vector;
+  Vec2 vector = Vec2::Zero();  // Mode::Vector
+  TimeInput input;             // magnitude along each point's direction (a table, or a function for Displacement)
+  double current = 0;          // last value of a function input
+};
+
+// A pressure on a set of edges (the engine's SHI load: normal to each edge,
+// integrated along it, pushing into the block when positive). A constant or a
+// {t, p} table goes to the engine as a history (evaluated at each step's end,
+// t + Δt); a Lua function is evaluated here once per step, before the step.
+struct ScriptPressure {
+  std::vector<EdgeRef> edges;
+  int world_id = -1;
+  TimeInput pressure;
+  double current = 0;  // last value of a function input
+};
+
+// Something that follows the run step by step (the renderer's frame
+// sequences). Called on the Lua thread, between steps, never inside one.
+struct StepHook {
+  virtual ~StepHook() = default;
+  virtual void before_step(const World&) {}
+  virtual void after_step(const World&) {}  // after the monitors have recorded the step
+  virtual void monitor_added(int /*tracked_point*/, const std::string& /*name*/) {}
+};
+
+struct Totals {
+  long steps = 0;
+  long step_cuts = 0;
+  long open_close_iterations = 0;
+  long cg_iterations = 0;
+  double wall_seconds = 0;
+};
+
+class ScriptModel {
+ public:
+  explicit ScriptModel(const Controls& controls);
+  ~ScriptModel();
+
+  World& world() { return *world_; }
+  const World& world() const { return *world_; }
+  bool closed() const { return !world_; }
+  // Releases the World and everything attached (m:close()).
+  void close();
+
+  // ---- geometry input (cutting) -------------------------------------------
+  geometry::CutInput& cut_input() { return cut_; }
+  bool has_domain() const { return has_domain_; }
+  // `joint`: the joint material of the boundary's edges (what an explicit
+  // block touching them slides on).
+  void set_domain(std::vector<Vec2> polygon, int rock, int joint);
+  int add_hole(std::vector<Vec2> polygon, int joint);  // 0-based hole index
+  int hole_count() const { return static_cast<int>(cut_.holes.size()); }
+  bool generated() const { return generated_; }
+  // Cuts the domain and adds every block to the World. Returns the new ids.
+  std::vector<BlockId> generate();
+  const geometry::CutStats& cut_stats() const { return cut_stats_; }
+
+  // An explicit block; edge_joints as World::add_block.
+  BlockId add_block(std::vector<Vec2> vertices, int rock, std::vector<int> edge_joints,
+                    std::vector<EdgeTag> tags = {});
+  const EdgeTag& edge_tag(EdgeRef e) const { return tags_[e.block][e.edge]; }
+
+  // ---- queries on the current geometry ------------------------------------
+  std::optional<BlockId> block_at(const Vec2& p) const;
+  int edge_count(BlockId b) const { return static_cast<int>(world_->block_vertices(b).size()); }
+  std::pair<Vec2, Vec2> edge_points(EdgeRef e) const;
+  // Size of the model (bounding-box diagonal), for default tolerances.
+  double extent() const;
+
+  // ---- loads, constraints, monitors -------------------------------------------
+  int add_point_load(BlockId b, const Vec2& point, ForceInput force, lua_State* L);
+  void set_point_load(int id, ForceInput force, lua_State* L);
+  ScriptPointLoad& point_load(int id) { return loads_.at(id); }
+  Vec2 point_load_value(int id, lua_State* L) const;  // the force of the last step
+  int point_load_count() const { return static_cast<int>(loads_.size()); }
+  int add_pressure(std::vector<EdgeRef> edges, TimeInput p, lua_State* L);
+  void set_pressure(int id, TimeInput p, lua_State* L);
+  ScriptPressure& pressure(int id) { return pressures_.at(id); }
+  // The pressure applied in the last step (at its end time).
+  double pressure_value(int id, lua_State* L) const;
+  int pressure_count() const { return static_cast<int>(pressures_.size()); }
+  int add_fixed_point(BlockId b, const Vec2& p);
+  void fix_edges(const std::vector<EdgeRef>& edges) { world_->fix_edges(edges); }
+
+  // Targets at material points; directions empty (Mode::Vector without
+  // direction) or one unit vector per point.
+  int add_target(const std::vector<std::pair<BlockId, Vec2>>& points, const std::vector<Vec2>& directions,
+                 ScriptTarget target, lua_State* L);
+  void set_target(int id, ScriptTarget input, lua_State* L);
+  ScriptTarget& target(int id) { return targets_.at(id); }
+  int target_count() const { return static_cast<int>(targets_.size()); }
+  int fixed_point_count() const { return fixed_points_; }
+
+  int add_monitor(std::unique_ptr<Monitor> m);
+  Monitor& monitor(int id) { return *monitors_.at(id); }
+  int monitor_count() const { return static_cast<int>(monitors_.size()); }
+  double field_value(const Monitor& m, Field f) const;
+
+  StepHook& add_hook(std::unique_ptr<StepHook> hook);
+  std::span<const std::unique_ptr<StepHook>> hooks() const { return hooks_; }
+
+  // ---- stepping -------------------------------------------------------------
+  // One step: evaluate the time-varying loads at the step's planned end time
+  // (on L, serially), World::step(), record the monitors.
+  StepStats step(lua_State* L);
+  // The time at which the next step's loads are evaluated.
+  double load_time() const;
+  const Totals& totals() const { return totals_; }
+  // True while load histories are being evaluated (the model must not be changed then).
+  bool busy() const { return busy_; }
+
+ private:
+  void apply_loads(lua_State* L, double t);
+  void record(Monitor& m);
+  void hand_over(ScriptPressure& p, lua_State* L);
+  void hand_over(ScriptPointLoad& load, lua_State* L);
+  void hand_over(ScriptTarget& t, lua_State* L);
+  void push_force(ScriptPointLoad& load, const Vec2& f);
+
+  std::unique_ptr<World> world_;
+  geometry::CutInput cut_;
+  bool has_domain_ = false;
+  bool generated_ = false;
+  int domain_joint_ = 0;
+  std::vector<int> hole_joint_;
+  geometry::CutStats cut_stats_;
+  std::vector<std::vector<EdgeTag>> tags_;  // per block, per stored edge
+  std::vector<ScriptPointLoad> loads_;
+  std::vector<ScriptPressure> pressures_;
+  std::vector<ScriptTarget> targets_;
+  std::vector<std::unique_ptr<Monitor>> monitors_;
+  std::vector<std::unique_ptr<StepHook>> hooks_;
+  int fixed_points_ = 0;
+  Totals totals_;
+  bool busy_ = false;
+};
+
+}  // namespace dda::script

@@ -1,0 +1,120 @@
+// The `dda` module table: dda.model{...}, dda.param(name, default),
+// dda.output(name), dda.out_dir(), dda.fields, dda.version.
+#include <system_error>
+
+#include "scripting.hpp"
+#include "wrap.hpp"
+
+namespace dda::script {
+
+namespace {
+
+// dda.model{plane = "stress" | "strain", g0 = ..., ...controls} → Model
+int dda_model(lua_State* L) {
+  Controls c;
+  if (!lua_isnoneornil(L, 1)) parse_controls(controls_options(L, 1, "dda.model"), c);
+  push_new_model(L, c);
+  ++session(L).models_created;
+  attach_session_frames(L, lua_gettop(L));  // dda run --frames N
+  return 1;
+}
+
+// dda.param(name, default) → the --set NAME=VALUE value (a number when it
+// reads as one, true/false when the default is a boolean), else the default.
+int dda_param(lua_State* L) {
+  const std::string name = check_string(L, 1, "dda.param", "argument 1 (name)");
+  Session& s = session(L);
+  s.params_read.insert(name);
+  const auto it = s.params.find(name);
+  if (it == s.params.end()) {
+    lua_settop(L, 2);
+    return 1;
+  }
+  const std::string& v = it->second;
+  const int def_type = lua_type(L, 2);
+  if (def_type == LUA_TBOOLEAN) {
+    if (v == "true" || v == "1" || v == "yes") lua_pushboolean(L, 1);
+    else if (v == "false" || v == "0" || v == "no") lua_pushboolean(L, 0);
+    else fail("dda.param: --set ", name, "=", v, " must be true or false (the default is a boolean)");
+    return 1;
+  }
+  if (!v.empty() && lua_stringtonumber(L, v.c_str()) != 0) return 1;
+  if (def_type == LUA_TNUMBER) fail("dda.param: --set ", name, "=", v, " is not a number (the default is ", lua_tonumber(L, 2), ")");
+  lua_pushlstring(L, v.data(), v.size());
+  return 1;
+}
+
+// dda.out_dir() → the output folder (--out, default "out")
+int dda_out_dir(lua_State* L) {
+  lua_pushstring(L, session(L).out_dir.string().c_str());
+  return 1;
+}
+
+// dda.output(name) → path of `name` in the output folder (created if needed),
+// for scripts that write their own files with io.open.
+int dda_output(lua_State* L) {
+  const std::string name = check_string(L, 1, "dda.output", "argument 1 (file name)");
+  const Session& s = session(L);
+  std::error_code ec;
+  std::filesystem::create_directories(s.out_dir, ec);
+  if (ec) fail("dda.output: cannot create the output folder '", s.out_dir.string(), "': ", ec.message());
+  lua_pushstring(L, (s.out_dir / name).string().c_str());
+  return 1;
+}
+
+}  // namespace
+
+int open_module(lua_State* L) {
+  if (luaL_getmetatable(L, kModelType) == LUA_TNIL) {
+    lua_pop(L, 1);
+    register_model(L);  // first: the others add methods to dda.Model
+    register_geometry(L);
+    register_materials(L);
+    register_block(L);
+    register_edges(L);
+    register_loads(L);
+    register_boundaries(L);
+    register_monitor(L);
+    register_render(L);
+  } else {
+    lua_pop(L, 1);
+  }
+  static const luaL_Reg functions[] = {{"model", guarded<dda_model>},
+                                       {"param", guarded<dda_param>},
+                                       {"out_dir", guarded<dda_out_dir>},
+                                       {"output", guarded<dda_output>},
+                                       {nullptr, nullptr}};
+  luaL_newlib(L, functions);
+  register_render_functions(L);
+  lua_pushliteral(L, "0.1");
+  lua_setfield(L, -2, "version");
+  const std::string fields = field_list();
+  lua_newtable(L);
+  int k = 0;
+  for (std::size_t start = 0; start < fields.size();) {
+    std::size_t end = fields.find(", ", start);
+    if (end == std::string::npos) end = fields.size();
+    lua_pushlstring(L, fields.data() + start, end - start);
+    lua_rawseti(L, -2, ++k);
+    start = end + 2;
+  }
+  lua_setfield(L, -2, "fields");
+#ifdef DDA_HAVE_RENDER
+  lua_pushboolean(L, 1);
+#else
+  lua_pushboolean(L, 0);
+#endif
+  lua_setfield(L, -2, "has_render");
+  return 1;
+}
+
+std::vector<std::string> unused_params(const Session& s) {
+  std::vector<std::string> out;
+  for (const auto& [name, value] : s.params)
+    if (!s.params_read.count(name))
+      out.push_back(msg("warning: --set ", name, "=", value, " was never read by the script (no dda.param(\"", name,
+                        "\", ...))"));
+  return out;
+}
+
+}  // namespace dda::script

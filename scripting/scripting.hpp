@@ -1,0 +1,42 @@
+#pragma once
+// The Lua layer's entry points: the `dda` module, batch runs and the console.
+#include <lua.hpp>
+
+#include <string>
+#include <vector>
+
+#include "session.hpp"
+
+namespace dda::script {
+
+// lua_CFunction for require "dda": registers every type (once per state) and
+// returns the module table.
+int open_module(lua_State* L);
+
+// A fresh state with the standard libraries, `dda` preloaded for require and
+// set as a global. The caller owns the state (lua_close).
+lua_State* new_state(Session session);
+
+// Loads a script (as text only, never bytecode) and runs it with a
+// traceback handler. Returns true on success; on failure `error` holds the
+// message and traceback. `args` become the global `arg` table (arg[0] = script).
+bool run_file(lua_State* L, const std::string& path, const std::vector<std::string>& args, std::string& error);
+
+// Runs a chunk of source text (tests, console).
+bool run_string(lua_State* L, const std::string& code, const std::string& chunkname, std::string& error);
+
+// `dda run`: returns the process exit code (0 ok, 1 script error, 130 interrupted).
+struct RunOptions {
+  std::string script;
+  std::vector<std::string> script_args;
+  Session session;
+};
+int run_batch(const RunOptions& options);
+
+// `dda console [SCRIPT]`
+int run_console(const RunOptions& options);
+
+// Warnings for --set names the script never read (typos), one line each.
+std::vector<std::string> unused_params(const Session& s);
+
+}  // namespace dda::script

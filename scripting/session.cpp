@@ -1,0 +1,139 @@
+#include "session.hpp"
+
+#include <csignal>
+#include <cstdio>
+#include <new>
+
+#include "lua_support.hpp"
+
+namespace dda::script {
+
+namespace {
+
+const char kSessionKey = 0;  // its address keys the session in the registry
+
+int session_gc(lua_State* L) {
+  static_cast<Session*>(lua_touserdata(L, 1))->~Session();
+  return 0;
+}
+
+Session* find_session(lua_State* L) {
+  lua_rawgetp(L, LUA_REGISTRYINDEX, &kSessionKey);
+  auto* s = static_cast<Session*>(lua_touserdata(L, -1));
+  lua_pop(L, 1);
+  return s;
+}
+
+Session* new_session(lua_State* L, Session value) {
+  void* mem = lua_newuserdatauv(L, sizeof(Session), 0);
+  auto* s = new (mem) Session(std::move(value));
+  lua_createtable(L, 0, 1);
+  lua_pushcfunction(L, session_gc);
+  lua_setfield(L, -2, "__gc");
+  lua_setmetatable(L, -2);
+  lua_rawsetp(L, LUA_REGISTRYINDEX, &kSessionKey);
+  return s;
+}
+
+volatile std::sig_atomic_t g_interrupted = 0;
+lua_State* g_state = nullptr;
+
+void stop_hook(lua_State* L, lua_Debug*) {
+  lua_sethook(L, nullptr, 0, 0);
+  luaL_error(L, "interrupted!");
+}
+
+extern "C" void on_sigint(int sig) {
+  std::signal(sig, SIG_DFL);  // a second Ctrl-C terminates the process
+  g_interrupted = 1;
+  if (g_state) lua_sethook(g_state, stop_hook, LUA_MASKCALL | LUA_MASKRET | LUA_MASKCOUNT, 1);
+}
+
+}  // namespace
+
+Session& session(lua_State* L) {
+  if (Session* s = find_session(L)) return *s;
+  return *new_session(L, Session{});
+}
+
+void set_session(lua_State* L, Session s) {
+  if (Session* old = find_session(L)) {
+    *old = std::move(s);
+    return;
+  }
+  new_session(L, std::move(s));
+}
+
+void install_interrupt_handler(lua_State* L) {
+  lua_rawgeti(L, LUA_REGISTRYINDEX, LUA_RIDX_MAINTHREAD);
+  g_state = lua_tothread(L, -1);
+  lua_pop(L, 1);
+  g_interrupted = 0;
+  std::signal(SIGINT, on_sigint);
+}
+
+void remove_interrupt_handler() {
+  std::signal(SIGINT, SIG_DFL);
+  if (g_state) lua_sethook(g_state, nullptr, 0, 0);
+  g_state = nullptr;
+}
+
+bool interrupt_requested() { return g_interrupted != 0; }
+
+void clear_interrupt() { g_interrupted = 0; }
+
+void check_interrupt(const char* where_text) {
+  if (!g_interrupted) return;
+  // The hook has done its job (we stop here, at a step boundary); clear it so
+  // it does not fire again inside the error handler.
+  if (g_state) lua_sethook(g_state, nullptr, 0, 0);
+  throw Interrupted(msg("interrupted (Ctrl-C) ", where_text));
+}
+
+// ---- progress -----------------------------------------------------------------------
+
+Progress::Progress(lua_State* L, double t_start, double t_end, long step_start, long step_end)
+    : enabled_(session(L).progress),
+      t_start_(t_start),
+      t_end_(t_end),
+      step_start_(step_start),
+      step_end_(step_end),
+      start_(std::chrono::steady_clock::now()),
+      last_(start_) {}
+
+Progress::~Progress() {
+  if (drawn_) {
+    std::fputs("\r\033[K", stderr);
+    std::fflush(stderr);
+  }
+}
+
+void Progress::update(double t, long step) {
+  if (!enabled_) return;
+  const auto now = std::chrono::steady_clock::now();
+  const double elapsed = std::chrono::duration<double>(now - start_).count();
+  if (elapsed < 0.5 || std::chrono::duration<double>(now - last_).count() < 0.2) return;
+  last_ = now;
+  const long done = step - step_start_;
+  const double rate = done / elapsed;
+  double fraction = -1;
+  if (t_end_ > t_start_) fraction = (t - t_start_) / (t_end_ - t_start_);
+  if (step_end_ > step_start_) fraction = std::max(fraction, double(done) / double(step_end_ - step_start_));
+  char eta[64] = "";
+  if (fraction > 0 && fraction <= 1) {
+    const double left = elapsed * (1 - fraction) / fraction;
+    if (left >= 3600)
+      std::snprintf(eta, sizeof eta, " | ETA %dh%02dm", int(left / 3600), int(left / 60) % 60);
+    else if (left >= 60)
+      std::snprintf(eta, sizeof eta, " | ETA %dm%02ds", int(left / 60), int(left) % 60);
+    else
+      std::snprintf(eta, sizeof eta, " | ETA %.0f s", left);
+  }
+  char target[48] = "";
+  if (t_end_ > t_start_) std::snprintf(target, sizeof target, " / %.4g s", t_end_);
+  std::fprintf(stderr, "\r\033[Kt = %.4g s%s | step %ld | %.0f steps/s%s", t, target, step, rate, eta);
+  std::fflush(stderr);
+  drawn_ = true;
+}
+
+}  // namespace dda::script

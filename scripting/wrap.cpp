@@ -1,0 +1,302 @@
+// Shared wrapper machinery: type registration, handles and their checks,
+// edge selection.
+#include "wrap.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+
+namespace dda::script {
+
+namespace {
+
+// Short human names for messages: "dda.Block" → "block".
+std::string pretty(const char* type) {
+  if (std::strcmp(type, kModelType) == 0) return "model";
+  if (std::strcmp(type, kBlockType) == 0) return "block";
+  if (std::strcmp(type, kBlockSetType) == 0) return "block set";
+  if (std::strcmp(type, kEdgeSetType) == 0) return "edge set";
+  if (std::strcmp(type, kRockType) == 0) return "rock material";
+  if (std::strcmp(type, kJointType) == 0) return "joint material";
+  if (std::strcmp(type, kMonitorType) == 0) return "monitor";
+  if (std::strcmp(type, kPointLoadType) == 0) return "point load";
+  if (std::strcmp(type, kPressureType) == 0) return "pressure";
+  if (std::strcmp(type, kHoleType) == 0) return "hole";
+  return type;
+}
+
+// __index: methods first, then the type's fallback (fields), else an error
+// naming the key (a misspelt method is caught where it is written).
+int index_dispatch(lua_State* L) {
+  lua_pushvalue(L, 2);
+  if (lua_rawget(L, lua_upvalueindex(1)) != LUA_TNIL) return 1;
+  lua_pop(L, 1);
+  if (!lua_isnone(L, lua_upvalueindex(2))) {
+    // Fields (and, for sets, integer indices: s[i] is nil past the end so
+    // that ipairs stops).
+    const lua_CFunction fallback = lua_tocfunction(L, lua_upvalueindex(2));
+    const int n = fallback(L);
+    if (n > 0 && (!lua_isnil(L, -1) || lua_type(L, 2) != LUA_TSTRING)) return n;
+    lua_settop(L, 2);
+  }
+  const char* type = "object";
+  if (lua_getmetatable(L, 1)) {
+    lua_getfield(L, -1, "__name");
+    if (lua_type(L, -1) == LUA_TSTRING) type = lua_tostring(L, -1);  // kept alive by the metatable
+    lua_pop(L, 2);
+  }
+  if (lua_type(L, 2) != LUA_TSTRING) return luaL_error(L, "%s cannot be indexed with a %s", type, luaL_typename(L, 2));
+  const char* key = lua_tostring(L, 2);
+  // "did you mean": the closest method name.
+  const char* best = nullptr;
+  int best_d = 3;
+  lua_pushnil(L);
+  while (lua_next(L, lua_upvalueindex(1)) != 0) {
+    lua_pop(L, 1);
+    if (lua_type(L, -1) == LUA_TSTRING) {
+      const int d = edit_distance(key, lua_tostring(L, -1));
+      if (d < best_d) best_d = d, best = lua_tostring(L, -1);  // the key string lives in the methods table
+    }
+  }
+  if (best) return luaL_error(L, "%s has no method or field '%s' (did you mean '%s'?)", type, key, best);
+  return luaL_error(L, "%s has no method or field '%s'", type, key);
+}
+
+}  // namespace
+
+void define_type(lua_State* L, const char* type, const luaL_Reg* methods, const luaL_Reg* meta,
+                 lua_CFunction index_fallback) {
+  luaL_newmetatable(L, type);
+  lua_newtable(L);
+  if (methods) luaL_setfuncs(L, methods, 0);
+  lua_pushvalue(L, -1);
+  lua_setfield(L, -3, "__methods");
+  if (index_fallback) {
+    lua_pushcfunction(L, index_fallback);
+    lua_pushcclosure(L, index_dispatch, 2);
+  } else {
+    lua_pushcclosure(L, index_dispatch, 1);
+  }
+  lua_setfield(L, -2, "__index");
+  if (meta) luaL_setfuncs(L, meta, 0);
+  lua_pop(L, 1);
+}
+
+void add_model_methods(lua_State* L, const luaL_Reg* methods) {
+  luaL_getmetatable(L, kModelType);
+  lua_getfield(L, -1, "__methods");
+  luaL_setfuncs(L, methods, 0);
+  lua_pop(L, 2);
+}
+
+// ---- models ---------------------------------------------------------------------------
+
+ScriptModel& push_new_model(lua_State* L, const Controls& controls) {
+  auto* box = static_cast<ModelBox*>(lua_newuserdatauv(L, sizeof(ModelBox), 0));
+  box->model = nullptr;
+  luaL_setmetatable(L, kModelType);  // its __gc deletes the model
+  box->model = new ScriptModel(controls);
+  return *box->model;
+}
+
+ScriptModel& check_model(lua_State* L, int idx, std::string_view call) {
+  auto* box = static_cast<ModelBox*>(luaL_testudata(L, idx, kModelType));
+  if (!box || !box->model)
+    fail(call, ": expected a model as self, got ", type_of(L, idx),
+         " (call methods with a colon: m:step(10), not m.step(10))");
+  if (box->model->closed()) fail(call, ": attempt to use a closed model (m:close() was called)");
+  return *box->model;
+}
+
+void check_not_busy(const ScriptModel& m, std::string_view call) {
+  if (m.busy()) fail(call, ": the model cannot be changed or stepped from inside a load history function");
+}
+
+// ---- handles ------------------------------------------------------------------------------
+
+Handle* push_handle(lua_State* L, int model_idx, const char* type, int id, int extra_bytes) {
+  model_idx = lua_absindex(L, model_idx);
+  auto* box = static_cast<ModelBox*>(lua_touserdata(L, model_idx));
+  auto* h = static_cast<Handle*>(lua_newuserdatauv(L, sizeof(Handle) + extra_bytes, 1));
+  h->model = box->model;
+  h->id = id;
+  h->count = 0;
+  luaL_setmetatable(L, type);
+  lua_pushvalue(L, model_idx);
+  lua_setiuservalue(L, -2, 1);
+  return h;
+}
+
+Handle* test_handle(lua_State* L, int idx, const char* type) {
+  return static_cast<Handle*>(luaL_testudata(L, idx, type));
+}
+
+Handle* check_handle(lua_State* L, int idx, const char* type, std::string_view call, std::string_view what) {
+  Handle* h = test_handle(L, idx, type);
+  if (!h) {
+    if (what == "self")
+      fail(call, ": expected a ", pretty(type), " as self, got ", type_of(L, idx),
+           " (call methods with a colon: x:method(...))");
+    fail(call, ": ", what, " must be a ", pretty(type), ", got ", type_of(L, idx));
+  }
+  if (!h->model || h->model->closed())
+    fail(call, ": attempt to use a ", pretty(type), " of a closed model (m:close() was called)");
+  return h;
+}
+
+void push_model_of(lua_State* L, int idx) { lua_getiuservalue(L, idx, 1); }
+
+void check_same_model(const Handle* h, const ScriptModel* model, std::string_view call, std::string_view what) {
+  if (!h->model || h->model->closed()) fail(call, ": attempt to use ", what, " of a closed model");
+  if (model && h->model != model) fail(call, ": ", what, " belongs to another model");
+}
+
+void push_block(lua_State* L, int model_idx, BlockId b) { push_handle(L, model_idx, kBlockType, b); }
+
+BlockId check_block(lua_State* L, int idx, const ScriptModel* model, std::string_view call, std::string_view what) {
+  Handle* h = check_handle(L, idx, kBlockType, call, what);
+  check_same_model(h, model, call, what);
+  if (h->id < 0 || static_cast<std::size_t>(h->id) >= h->model->world().block_count())
+    fail(call, ": attempt to use a removed/invalid block (id ", h->id, ")");
+  return h->id;
+}
+
+void push_blockset(lua_State* L, int model_idx, std::span<const BlockId> blocks) {
+  Handle* h = push_handle(L, model_idx, kBlockSetType, 0, static_cast<int>(blocks.size() * sizeof(BlockId)));
+  h->count = static_cast<std::int32_t>(blocks.size());
+  std::copy(blocks.begin(), blocks.end(), set_blocks(h));
+}
+
+std::vector<BlockId> check_blockset(lua_State* L, int idx, const ScriptModel* model, std::string_view call,
+                                    std::string_view what) {
+  if (test_handle(L, idx, kBlockType)) return {check_block(L, idx, model, call, what)};
+  Handle* h = check_handle(L, idx, kBlockSetType, call, what);
+  check_same_model(h, model, call, what);
+  std::vector<BlockId> out(set_blocks(h), set_blocks(h) + h->count);
+  for (BlockId b : out)
+    if (static_cast<std::size_t>(b) >= h->model->world().block_count())
+      fail(call, ": attempt to use a removed/invalid block (id ", b, ")");
+  return out;
+}
+
+void push_edgeset(lua_State* L, int model_idx, std::span<const EdgeRef> edges) {
+  Handle* h = push_handle(L, model_idx, kEdgeSetType, 0, static_cast<int>(edges.size() * sizeof(EdgeRef)));
+  h->count = static_cast<std::int32_t>(edges.size());
+  std::copy(edges.begin(), edges.end(), set_edges(h));
+}
+
+std::vector<EdgeRef> check_edgeset(lua_State* L, int idx, const ScriptModel* model, std::string_view call,
+                                   std::string_view what) {
+  Handle* h = check_handle(L, idx, kEdgeSetType, call, what);
+  check_same_model(h, model, call, what);
+  std::vector<EdgeRef> out(set_edges(h), set_edges(h) + h->count);
+  for (const EdgeRef& e : out)
+    if (static_cast<std::size_t>(e.block) >= h->model->world().block_count())
+      fail(call, ": attempt to use a removed/invalid block (id ", e.block, ")");
+  return out;
+}
+
+int check_rock(lua_State* L, int idx, const ScriptModel* model, std::string_view call, std::string_view what) {
+  Handle* h = check_handle(L, idx, kRockType, call, what);
+  check_same_model(h, model, call, what);
+  if (h->id < 0 || h->id >= h->model->world().rock_material_count())
+    fail(call, ": attempt to use an invalid rock material (id ", h->id, ")");
+  return h->id;
+}
+
+int check_joint(lua_State* L, int idx, const ScriptModel* model, std::string_view call, std::string_view what) {
+  Handle* h = check_handle(L, idx, kJointType, call, what);
+  check_same_model(h, model, call, what);
+  if (h->id < 0 || h->id >= h->model->world().joint_material_count())
+    fail(call, ": attempt to use an invalid joint material (id ", h->id, ")");
+  return h->id;
+}
+
+void push_rock(lua_State* L, int model_idx, int id) { push_handle(L, model_idx, kRockType, id); }
+void push_joint(lua_State* L, int model_idx, int id) { push_handle(L, model_idx, kJointType, id); }
+void push_monitor(lua_State* L, int model_idx, int id) { push_handle(L, model_idx, kMonitorType, id); }
+void push_point_load(lua_State* L, int model_idx, int id) { push_handle(L, model_idx, kPointLoadType, id); }
+void push_pressure(lua_State* L, int model_idx, int id) { push_handle(L, model_idx, kPressureType, id); }
+void push_hole(lua_State* L, int model_idx, int id) { push_handle(L, model_idx, kHoleType, id); }
+
+// ---- edge selection -------------------------------------------------------------------------
+
+namespace {
+double distance_to_segment(const Vec2& p, const Vec2& a, const Vec2& b) {
+  const Vec2 e = b - a;
+  const double len2 = e.squaredNorm();
+  const double t = len2 > 0 ? std::clamp((p - a).dot(e) / len2, 0.0, 1.0) : 0.0;
+  return (p - (a + t * e)).norm();
+}
+bool in_box(const Vec2& p, const std::array<double, 4>& q, double tol) {
+  const double x1 = std::min(q[0], q[2]), x2 = std::max(q[0], q[2]);
+  const double y1 = std::min(q[1], q[3]), y2 = std::max(q[1], q[3]);
+  return p.x() >= x1 - tol && p.x() <= x2 + tol && p.y() >= y1 - tol && p.y() <= y2 + tol;
+}
+}  // namespace
+
+std::vector<EdgeRef> select_edges(const ScriptModel& m, const EdgeQuery& q) {
+  std::vector<EdgeRef> out;
+  const World& w = m.world();
+  const double tol = q.tol >= 0 ? q.tol : 1e-7 * std::max(1.0, m.extent());
+  const auto count = static_cast<BlockId>(w.block_count());
+  for (BlockId b = 0; b < count; ++b) {
+    if (q.block && *q.block != b) continue;
+    const int n = m.edge_count(b);
+    for (int k = 0; k < n; ++k) {
+      const EdgeRef e{b, k};
+      const EdgeTag& tag = m.edge_tag(e);
+      if (q.any_boundary && tag.kind != EdgeKind::Domain && tag.kind != EdgeKind::Hole) continue;
+      if (q.boundary && tag.kind != *q.boundary) continue;
+      if (q.hole >= 0 && (tag.kind != EdgeKind::Hole || tag.hole != q.hole)) continue;
+      if (q.joint >= 0 && w.block_edge_joint(b, k) != q.joint) continue;
+      if (q.on_segment || q.in_box) {
+        const auto [a, c] = m.edge_points(e);
+        if (q.on_segment) {
+          const Vec2 s0((*q.on_segment)[0], (*q.on_segment)[1]), s1((*q.on_segment)[2], (*q.on_segment)[3]);
+          if (distance_to_segment(a, s0, s1) > tol || distance_to_segment(c, s0, s1) > tol) continue;
+        }
+        if (q.in_box && !(in_box(a, *q.in_box, tol) && in_box(c, *q.in_box, tol))) continue;
+      }
+      out.push_back(e);
+    }
+  }
+  return out;
+}
+
+void push_point(lua_State* L, const Vec2& p) {
+  lua_createtable(L, 2, 0);
+  lua_pushnumber(L, p.x());
+  lua_rawseti(L, -2, 1);
+  lua_pushnumber(L, p.y());
+  lua_rawseti(L, -2, 2);
+}
+
+void push_stats(lua_State* L, const StepStats& s) {
+  lua_createtable(L, 0, 13);
+  auto num = [&](const char* k, double v) {
+    lua_pushnumber(L, v);
+    lua_setfield(L, -2, k);
+  };
+  auto integer = [&](const char* k, long v) {
+    lua_pushinteger(L, v);
+    lua_setfield(L, -2, k);
+  };
+  num("dt", s.dt);
+  integer("open_close_iterations", s.open_close_iterations);
+  integer("cg_iterations", s.cg_iterations);
+  integer("step_cuts", s.step_cuts);
+  integer("contacts", s.contacts);
+  integer("closed_contacts", s.closed_contacts);
+  lua_pushboolean(L, s.contacts_searched);
+  lua_setfield(L, -2, "contacts_searched");
+  num("max_displacement_ratio", s.max_displacement_ratio);
+  num("t_detect", s.t_detect);
+  num("t_assemble", s.t_assemble);
+  num("t_solve", s.t_solve);
+  num("t_check", s.t_check);
+  num("t_update", s.t_update);
+  num("t_total", s.t_total);
+}
+
+}  // namespace dda::script

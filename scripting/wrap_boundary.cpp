@@ -1,0 +1,288 @@
+// Boundaries and prescribed displacements on edges and points (the paper's
+// VBC, SBC and DHI, as implemented by the engine):
+//   edges:viscous_boundary()                      → dda.Boundary
+//   edges:spring_boundary{p = ..., per_length = true} → dda.Boundary
+//   edges:target{displacement = h | velocity = h, direction = {dx, dy}} → dda.Target
+//   m:target{at = {x, y}, block = b, direction = {dx, dy}, displacement = h | velocity = h} → dda.Target
+#include <map>
+
+#include "wrap.hpp"
+
+namespace dda::script {
+
+namespace {
+
+constexpr const char* kBoundaryType = "dda.Boundary";
+constexpr const char* kTargetType = "dda.Target";
+
+void add_methods(lua_State* L, const char* type, const luaL_Reg* methods) {
+  luaL_getmetatable(L, type);
+  lua_getfield(L, -1, "__methods");
+  luaL_setfuncs(L, methods, 0);
+  lua_pop(L, 2);
+}
+
+struct EdgesSelf {
+  ScriptModel* model;
+  std::vector<EdgeRef> edges;
+};
+EdgesSelf self_edges(lua_State* L, const char* call) {
+  Handle* h = check_handle(L, 1, kEdgeSetType, call, "self");
+  EdgesSelf s{h->model, check_edgeset(L, 1, h->model, call, "self")};
+  check_not_busy(*s.model, call);
+  if (s.edges.empty()) fail(call, ": the edge set is empty (check the selection that made it)");
+  return s;
+}
+
+// edges:viscous_boundary() → Boundary
+int es_viscous(lua_State* L) {
+  EdgesSelf s = self_edges(L, "edges:viscous_boundary");
+  const int id = s.model->world().add_viscous_boundary(s.edges);
+  push_model_of(L, 1);
+  push_handle(L, -1, kBoundaryType, id);
+  return 1;
+}
+
+// edges:spring_boundary{p = stiffness, per_length = true} → Boundary
+// (per_length: Eq. 22, spring p·l at each end; false: Eq. 21, p alone)
+int es_spring(lua_State* L) {
+  EdgesSelf s = self_edges(L, "edges:spring_boundary");
+  const Options o(L, 2, "edges:spring_boundary", {"p", "per_length"});
+  const double p = o.positive("p");
+  const bool per_length = o.boolean("per_length", true);
+  const int id = s.model->world().add_spring_boundary(s.edges, p, per_length);
+  push_model_of(L, 1);
+  push_handle(L, -1, kBoundaryType, id);
+  return 1;
+}
+
+// The input of a target: displacement = {ux, uy} (a fixed vector) or a
+// history (number, {{t, u}, ...}, function of t) along the direction; or
+// velocity = a history (number or table; the engine integrates it).
+ScriptTarget read_target(const Options& o, bool directed) {
+  lua_State* L = o.state();
+  ScriptTarget t;
+  const int which = one_of(o, {"displacement", "velocity"});
+  if (which == 1) {
+    t.mode = ScriptTarget::Mode::Velocity;
+    o.push("velocity");
+    if (lua_type(L, -1) == LUA_TFUNCTION)
+      fail(o.call(), ": option 'velocity' must be a number or a table of {t, v} pairs (the engine integrates it); "
+                     "give a function of t as displacement instead");
+    t.input = TimeInput::parse(L, -1, o.call(), "option 'velocity'");
+    lua_pop(L, 1);
+  } else {
+    o.push("displacement");
+    const int idx = lua_gettop(L);
+    bool vector = false;
+    if (lua_type(L, idx) == LUA_TTABLE && lua_rawlen(L, idx) == 2) {
+      lua_rawgeti(L, idx, 1);
+      vector = lua_type(L, -1) == LUA_TNUMBER;
+      lua_pop(L, 1);
+    }
+    if (vector) {
+      t.mode = ScriptTarget::Mode::Vector;
+      t.vector = check_point(L, idx, o.call(), "option 'displacement' {ux, uy}");
+    } else {
+      t.mode = ScriptTarget::Mode::Displacement;
+      t.input = TimeInput::parse(L, idx, o.call(), "option 'displacement'");
+    }
+    lua_pop(L, 1);
+  }
+  if (t.mode != ScriptTarget::Mode::Vector && !directed)
+    fail(o.call(), ": a displacement or velocity history needs a direction = {dx, dy}");
+  return t;
+}
+
+// edges:target{displacement = h | velocity = h, direction = {dx, dy}} → Target.
+// A target at each end point of each edge (once per block vertex); without a
+// direction each point moves along the edge normal into its block (the mean
+// of its edges' normals where two edges of the set meet).
+int es_target(lua_State* L) {
+  EdgesSelf s = self_edges(L, "edges:target");
+  const Options o(L, 2, "edges:target", {"displacement", "velocity", "direction"});
+  std::optional<Vec2> direction;
+  if (o.has("direction")) {
+    direction = o.point("direction");
+    if (direction->norm() == 0) fail("edges:target: option 'direction' must not be zero");
+  }
+  ScriptTarget target = read_target(o, true);
+  std::map<std::pair<BlockId, int>, Vec2> normals;  // (block, vertex) → sum of inward normals
+  std::vector<std::pair<BlockId, int>> order;
+  for (const EdgeRef& e : s.edges) {
+    const auto [a, b] = s.model->edge_points(e);
+    const Vec2 d = (b - a).normalized();
+    const Vec2 inward(-d.y(), d.x());
+    const int n = s.model->edge_count(e.block);
+    for (int v : {e.edge, (e.edge + 1) % n}) {
+      const auto key = std::make_pair(e.block, v);
+      auto [it, fresh] = normals.emplace(key, Vec2::Zero());
+      if (fresh) order.push_back(key);
+      it->second += inward;
+    }
+  }
+  std::vector<std::pair<BlockId, Vec2>> points;
+  std::vector<Vec2> directions;
+  for (const auto& key : order) {
+    points.emplace_back(key.first, s.model->world().block_vertices(key.first)[key.second]);
+    const Vec2 n = normals[key];
+    if (target.mode == ScriptTarget::Mode::Vector) continue;
+    directions.push_back(direction ? direction->normalized() : (n.norm() > 0 ? Vec2(n.normalized()) : Vec2::UnitX()));
+  }
+  const int id = s.model->add_target(points, directions, std::move(target), L);
+  push_model_of(L, 1);
+  push_handle(L, -1, kTargetType, id);
+  return 1;
+}
+
+// m:target{at = {x, y}, block = b, direction = {dx, dy}, displacement = h | velocity = h} → Target
+int m_target(lua_State* L) {
+  ScriptModel& m = check_model(L, 1, "m:target");
+  check_not_busy(m, "m:target");
+  const Options o(L, 2, "m:target", {"at", "block", "direction", "displacement", "velocity"});
+  const Vec2 at = o.point("at");
+  BlockId b;
+  if (o.has("block")) {
+    o.push("block");
+    b = check_block(L, -1, &m, "m:target", "option 'block'");
+    lua_pop(L, 1);
+  } else {
+    const auto found = m.block_at(at);
+    if (!found) fail("m:target: no block at (", at.x(), ", ", at.y(), "); give block = ... or a point inside a block");
+    b = *found;
+  }
+  std::vector<Vec2> directions;
+  if (o.has("direction")) {
+    const Vec2 d = o.point("direction");
+    if (d.norm() == 0) fail("m:target: option 'direction' must not be zero");
+    directions.push_back(d.normalized());
+  }
+  ScriptTarget target = read_target(o, !directions.empty());
+  if (target.mode == ScriptTarget::Mode::Vector) directions.clear();
+  const int id = m.add_target({{b, at}}, directions, std::move(target), L);
+  push_handle(L, 1, kTargetType, id);
+  return 1;
+}
+
+// ---- dda.Boundary --------------------------------------------------------------------
+
+Handle* self_boundary(lua_State* L, const char* call) { return check_handle(L, 1, kBoundaryType, call, "self"); }
+
+// boundary:force() → fx, fy: the total force its points exerted in the last step (N per unit thickness)
+int bd_force(lua_State* L) {
+  Handle* h = self_boundary(L, "boundary:force");
+  const Vec2 f = h->model->world().boundary_force(h->id);
+  lua_pushnumber(L, f.x());
+  lua_pushnumber(L, f.y());
+  return 2;
+}
+
+// boundary:point_forces() → {{fx, fy}, ...}, two points per edge in edge order
+int bd_point_forces(lua_State* L) {
+  Handle* h = self_boundary(L, "boundary:point_forces");
+  const auto forces = h->model->world().boundary_point_forces(h->id);
+  lua_createtable(L, static_cast<int>(forces.size()), 0);
+  for (std::size_t i = 0; i < forces.size(); ++i) {
+    push_point(L, forces[i]);
+    lua_rawseti(L, -2, static_cast<lua_Integer>(i + 1));
+  }
+  return 1;
+}
+
+int bd_tostring(lua_State* L) {
+  auto* h = static_cast<Handle*>(luaL_checkudata(L, 1, kBoundaryType));
+  lua_pushfstring(L, "dda.Boundary %d", static_cast<int>(h->id + 1));
+  return 1;
+}
+
+// ---- dda.Target -----------------------------------------------------------------------------
+
+Handle* self_target(lua_State* L, const char* call) {
+  Handle* h = check_handle(L, 1, kTargetType, call, "self");
+  if (h->id < 0 || h->id >= h->model->target_count()) fail(call, ": attempt to use an invalid target");
+  return h;
+}
+
+// target:set{displacement = ... | velocity = ...}
+int tg_set(lua_State* L) {
+  Handle* h = self_target(L, "target:set");
+  check_not_busy(*h->model, "target:set");
+  const Options o(L, 2, "target:set", {"displacement", "velocity"});
+  ScriptTarget& old = h->model->target(h->id);
+  ScriptTarget input = read_target(o, old.mode != ScriptTarget::Mode::Vector);
+  if (old.mode == ScriptTarget::Mode::Vector && input.mode != ScriptTarget::Mode::Vector)
+    fail("target:set: this target has no direction: give displacement = {ux, uy}");
+  if (old.mode != ScriptTarget::Mode::Vector && input.mode == ScriptTarget::Mode::Vector)
+    fail("target:set: this target moves along a direction: give a displacement or velocity history");
+  h->model->set_target(h->id, std::move(input), L);
+  return 0;
+}
+
+// target:displacement([i]) → ux, uy of point i (default: the mean over its points)
+int tg_displacement(lua_State* L) {
+  Handle* h = self_target(L, "target:displacement");
+  const ScriptTarget& t = h->model->target(h->id);
+  Vec2 u = Vec2::Zero();
+  if (!lua_isnoneornil(L, 2)) {
+    const long i = check_integer(L, 2, "target:displacement", "argument 1 (point)");
+    if (i < 1 || i > static_cast<long>(t.world_ids.size()))
+      fail("target:displacement: no point ", i, " (the target has ", t.world_ids.size(), ")");
+    u = h->model->world().target_point_displacement(t.world_ids[i - 1]);
+  } else {
+    for (int id : t.world_ids) u += h->model->world().target_point_displacement(id);
+    u /= static_cast<double>(t.world_ids.size());
+  }
+  lua_pushnumber(L, u.x());
+  lua_pushnumber(L, u.y());
+  return 2;
+}
+
+// target:value([i]) → tx, ty: the target displacement applied in the last step at point i (default 1)
+int tg_value(lua_State* L) {
+  Handle* h = self_target(L, "target:value");
+  const ScriptTarget& t = h->model->target(h->id);
+  const long i = lua_isnoneornil(L, 2) ? 1 : check_integer(L, 2, "target:value", "argument 1 (point)");
+  if (i < 1 || i > static_cast<long>(t.world_ids.size()))
+    fail("target:value: no point ", i, " (the target has ", t.world_ids.size(), ")");
+  const Vec2 v = h->model->world().target_value(t.world_ids[i - 1]);
+  lua_pushnumber(L, v.x());
+  lua_pushnumber(L, v.y());
+  return 2;
+}
+
+int tg_count(lua_State* L) {
+  Handle* h = self_target(L, "target:count");
+  lua_pushinteger(L, static_cast<lua_Integer>(h->model->target(h->id).world_ids.size()));
+  return 1;
+}
+
+int tg_tostring(lua_State* L) {
+  auto* h = static_cast<Handle*>(luaL_checkudata(L, 1, kTargetType));
+  lua_pushfstring(L, "dda.Target %d", static_cast<int>(h->id + 1));
+  return 1;
+}
+
+}  // namespace
+
+void register_boundaries(lua_State* L) {
+  static const luaL_Reg edge_methods[] = {{"viscous_boundary", guarded<es_viscous>},
+                                          {"spring_boundary", guarded<es_spring>},
+                                          {"target", guarded<es_target>},
+                                          {nullptr, nullptr}};
+  add_methods(L, kEdgeSetType, edge_methods);
+  static const luaL_Reg model_methods[] = {{"target", guarded<m_target>}, {nullptr, nullptr}};
+  add_model_methods(L, model_methods);
+  static const luaL_Reg bd_methods[] = {
+      {"force", guarded<bd_force>}, {"point_forces", guarded<bd_point_forces>}, {nullptr, nullptr}};
+  static const luaL_Reg bd_meta[] = {{"__tostring", bd_tostring}, {nullptr, nullptr}};
+  define_type(L, kBoundaryType, bd_methods, bd_meta);
+  static const luaL_Reg tg_methods[] = {{"set", guarded<tg_set>},
+                                        {"displacement", guarded<tg_displacement>},
+                                        {"value", guarded<tg_value>},
+                                        {"count", guarded<tg_count>},
+                                        {nullptr, nullptr}};
+  static const luaL_Reg tg_meta[] = {{"__tostring", tg_tostring}, {nullptr, nullptr}};
+  define_type(L, kTargetType, tg_methods, tg_meta);
+}
+
+}  // namespace dda::script

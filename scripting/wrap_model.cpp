@@ -1,0 +1,423 @@
+// dda.Model: controls, stepping, statistics, contacts. (Geometry methods are
+// in wrap_geometry.cpp; materials, blocks, edges, loads and monitors add their
+// constructors to the model from their own files.)
+#include <cinttypes>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+
+#include "session.hpp"
+#include "wrap.hpp"
+
+namespace dda::script {
+
+// ---- controls -----------------------------------------------------------------------------
+
+#define DDA_CONTROL_KEYS                                                                                 \
+  "plane", "g0", "g1", "g2", "gg", "shear_ratio", "open_close_limit", "contact_tolerance",             \
+      "fixed_point_factor", "gravity", "cut_factor", "max_step_cuts", "cg_tolerance", "preconditioner",   \
+      "cg_max_iterations", "threads"
+
+void parse_controls(const Options& o, Controls& c) {
+  const std::string& call = o.call();
+  if (o.has("plane")) {
+    const std::string p = o.string("plane");
+    if (p == "stress")
+      c.plane = PlaneMode::Stress;
+    else if (p == "strain")
+      c.plane = PlaneMode::Strain;
+    else
+      fail(call, ": option 'plane' must be \"stress\" or \"strain\", got \"", p, "\"");
+  }
+  c.g0 = o.non_negative("g0", c.g0);
+  c.g1 = o.non_negative("g1", c.g1);
+  c.g2 = o.positive("g2", c.g2);
+  if (o.has("gg")) {
+    c.gg = o.number("gg");
+    if (c.gg < 0 || c.gg > 1) fail(call, ": option 'gg' must lie in [0, 1], got ", c.gg);
+  }
+  c.shear_ratio = o.non_negative("shear_ratio", c.shear_ratio);
+  if (o.has("open_close_limit")) {
+    const long n = o.integer("open_close_limit", 0);
+    if (n < 1) fail(call, ": option 'open_close_limit' must be at least 1, got ", n);
+    c.open_close_limit = static_cast<int>(n);
+  }
+  c.contact_tolerance = o.non_negative("contact_tolerance", c.contact_tolerance);
+  c.fixed_point_factor = o.positive("fixed_point_factor", c.fixed_point_factor);
+  if (o.has("gravity")) c.gravity = o.point("gravity");
+  if (o.has("cut_factor")) {
+    c.cut_factor = o.number("cut_factor");
+    if (!(c.cut_factor > 0 && c.cut_factor < 1)) fail(call, ": option 'cut_factor' must lie in (0, 1), got ", c.cut_factor);
+  }
+  if (o.has("max_step_cuts")) {
+    const long n = o.integer("max_step_cuts", 0);
+    if (n < 0) fail(call, ": option 'max_step_cuts' must be zero or positive, got ", n);
+    c.max_step_cuts = static_cast<int>(n);
+  }
+  c.cg_tolerance = o.positive("cg_tolerance", c.cg_tolerance);
+  if (o.has("preconditioner")) {
+    const std::string p = o.string("preconditioner");
+    if (p == "auto")
+      c.preconditioner = Preconditioning::Auto;
+    else if (p == "block_jacobi")
+      c.preconditioner = Preconditioning::BlockJacobi;
+    else if (p == "multigrid")
+      c.preconditioner = Preconditioning::Multigrid;
+    else
+      fail(call, ": option 'preconditioner' must be \"auto\", \"block_jacobi\" or \"multigrid\", got \"", p, "\"");
+  }
+  if (o.has("cg_max_iterations")) {
+    const long n = o.integer("cg_max_iterations", 0);
+    if (n < 0) fail(call, ": option 'cg_max_iterations' must be zero (automatic) or positive, got ", n);
+    c.cg_max_iterations = static_cast<int>(n);
+  }
+  if (o.has("threads")) {
+    const long n = o.integer("threads", 0);
+    if (n < 0) fail(call, ": option 'threads' must be zero (every core) or positive, got ", n);
+    c.threads = static_cast<int>(n);
+  }
+}
+
+Options controls_options(lua_State* L, int idx, const char* call) {
+  return Options(L, idx, call, {DDA_CONTROL_KEYS});
+}
+
+namespace {
+
+void push_controls(lua_State* L, const Controls& c) {
+  lua_createtable(L, 0, 16);
+  lua_pushstring(L, c.plane == PlaneMode::Stress ? "stress" : "strain");
+  lua_setfield(L, -2, "plane");
+  auto num = [&](const char* k, double v) {
+    lua_pushnumber(L, v);
+    lua_setfield(L, -2, k);
+  };
+  auto integer = [&](const char* k, long v) {
+    lua_pushinteger(L, v);
+    lua_setfield(L, -2, k);
+  };
+  num("g0", c.g0);
+  num("g1", c.g1);
+  num("g2", c.g2);
+  num("gg", c.gg);
+  num("shear_ratio", c.shear_ratio);
+  integer("open_close_limit", c.open_close_limit);
+  num("contact_tolerance", c.contact_tolerance);
+  num("fixed_point_factor", c.fixed_point_factor);
+  push_point(L, c.gravity);
+  lua_setfield(L, -2, "gravity");
+  num("cut_factor", c.cut_factor);
+  integer("max_step_cuts", c.max_step_cuts);
+  num("cg_tolerance", c.cg_tolerance);
+  lua_pushstring(L, c.preconditioner == Preconditioning::Auto          ? "auto"
+                    : c.preconditioner == Preconditioning::BlockJacobi ? "block_jacobi"
+                                                                       : "multigrid");
+  lua_setfield(L, -2, "preconditioner");
+  integer("cg_max_iterations", c.cg_max_iterations);
+  integer("threads", c.threads);
+}
+
+// m:controls{...} sets; m:controls() returns the current controls as a table.
+int m_controls(lua_State* L) {
+  ScriptModel& m = check_model(L, 1, "m:controls");
+  if (!lua_isnoneornil(L, 2)) {
+    check_not_busy(m, "m:controls");
+    Controls c = m.world().controls();
+    parse_controls(controls_options(L, 2, "m:controls"), c);
+    m.world().controls() = c;
+  }
+  push_controls(L, m.world().controls());
+  return 1;
+}
+
+// m:gravity(gx, gy)
+int m_gravity(lua_State* L) {
+  ScriptModel& m = check_model(L, 1, "m:gravity");
+  check_not_busy(m, "m:gravity");
+  const double gx = check_number(L, 2, "m:gravity", "argument 1 (gx)");
+  const double gy = check_number(L, 3, "m:gravity", "argument 2 (gy)");
+  m.world().controls().gravity = Vec2(gx, gy);
+  return 0;
+}
+
+// ---- stepping -----------------------------------------------------------------------------------
+
+struct RunPlan {
+  double t_end = -1;    // run until time ≥ t_end (when ≥ 0)
+  long steps = -1;      // or this many steps (when ≥ 0)
+  long every = 1;       // call the callback every N steps
+  int callback = 0;     // stack index of the callback (0: none)
+};
+
+std::string where_now(const World& w) { return msg("at step ", w.step_count(), ", t = ", w.time(), " s"); }
+
+// The stepping loop shared by m:step, m:run_until and m:run. Lua runs only
+// between steps: load histories inside ScriptModel::step (before
+// World::step), the callback after the step's monitors are written.
+void run_loop(lua_State* L, ScriptModel& m, const RunPlan& plan) {
+  World& w = m.world();
+  const long s0 = w.step_count();
+  const double t0 = w.time();
+  check_interrupt(where_now(w).c_str());
+  Progress progress(L, t0, plan.t_end >= 0 ? plan.t_end : 0, s0, plan.steps >= 0 ? s0 + plan.steps : 0);
+  for (;;) {
+    if (plan.steps >= 0 && w.step_count() - s0 >= plan.steps) break;
+    if (plan.t_end >= 0) {
+      // Stop once t reaches t_end (within a millionth of a step: t accumulates Δt).
+      const double slack = 1e-6 * (w.current_dt() > 0 ? w.current_dt() : 0);
+      if (w.time() >= plan.t_end - slack) break;
+    }
+    m.step(L);
+    check_interrupt(where_now(w).c_str());
+    progress.update(w.time(), w.step_count());
+    const long done = w.step_count() - s0;
+    if (plan.callback && done % plan.every == 0) {
+      lua_pushvalue(L, plan.callback);
+      lua_pushvalue(L, 1);  // the model
+      pcall(L, 1, 1);
+      const bool stop = lua_type(L, -1) == LUA_TBOOLEAN && !lua_toboolean(L, -1);
+      lua_pop(L, 1);
+      if (stop) break;
+      if (m.closed()) fail("m:run: the callback closed the model");
+    }
+  }
+}
+
+int push_time_and_steps(lua_State* L, const ScriptModel& m) {
+  lua_pushnumber(L, m.world().time());
+  lua_pushinteger(L, m.world().step_count());
+  return 2;
+}
+
+// m:step([n = 1]) → t, step
+int m_step(lua_State* L) {
+  ScriptModel& m = check_model(L, 1, "m:step");
+  check_not_busy(m, "m:step");
+  RunPlan plan;
+  plan.steps = lua_isnoneornil(L, 2) ? 1 : check_integer(L, 2, "m:step", "argument 1 (number of steps)");
+  if (plan.steps < 0) fail("m:step: argument 1 (number of steps) must be zero or positive, got ", plan.steps);
+  run_loop(L, m, plan);
+  return push_time_and_steps(L, m);
+}
+
+// m:run_until(t) → t, step
+int m_run_until(lua_State* L) {
+  ScriptModel& m = check_model(L, 1, "m:run_until");
+  check_not_busy(m, "m:run_until");
+  RunPlan plan;
+  plan.t_end = check_number(L, 2, "m:run_until", "argument 1 (time)");
+  if (plan.t_end < 0) fail("m:run_until: argument 1 (time) must be zero or positive, got ", plan.t_end);
+  run_loop(L, m, plan);
+  return push_time_and_steps(L, m);
+}
+
+// m:run{time = t | steps = n, every = N, callback = f} → t, step
+int m_run(lua_State* L) {
+  ScriptModel& m = check_model(L, 1, "m:run");
+  check_not_busy(m, "m:run");
+  const Options o(L, 2, "m:run", {"time", "steps", "every", "callback"});
+  RunPlan plan;
+  if (one_of(o, {"time", "steps"}) == 0) {
+    plan.t_end = o.non_negative("time", 0);
+  } else {
+    plan.steps = o.integer("steps", 0);
+    if (plan.steps < 0) fail("m:run: option 'steps' must be zero or positive, got ", plan.steps);
+  }
+  plan.every = o.integer("every", 1);
+  if (plan.every < 1) fail("m:run: option 'every' must be at least 1, got ", plan.every);
+  if (o.has("callback")) {
+    if (o.push("callback") != LUA_TFUNCTION) {
+      const std::string t = type_of(L, -1);
+      lua_pop(L, 1);
+      fail("m:run: option 'callback' must be a function, got ", t);
+    }
+    plan.callback = lua_gettop(L);
+  } else if (o.has("every")) {
+    fail("m:run: option 'every' needs a 'callback' to call");
+  }
+  run_loop(L, m, plan);
+  return push_time_and_steps(L, m);
+}
+
+// ---- read access ------------------------------------------------------------------------------------
+
+int m_time(lua_State* L) {
+  lua_pushnumber(L, check_model(L, 1, "m:time").world().time());
+  return 1;
+}
+int m_steps(lua_State* L) {
+  lua_pushinteger(L, check_model(L, 1, "m:steps").world().step_count());
+  return 1;
+}
+int m_dt(lua_State* L) {
+  lua_pushnumber(L, check_model(L, 1, "m:dt").world().current_dt());
+  return 1;
+}
+int m_suggested_dt(lua_State* L) {
+  lua_pushnumber(L, check_model(L, 1, "m:suggested_dt").world().suggested_time_step());
+  return 1;
+}
+int m_stats(lua_State* L) {
+  push_stats(L, check_model(L, 1, "m:stats").world().last_stats());
+  return 1;
+}
+int m_totals(lua_State* L) {
+  const Totals& t = check_model(L, 1, "m:totals").totals();
+  lua_createtable(L, 0, 6);
+  lua_pushinteger(L, t.steps);
+  lua_setfield(L, -2, "steps");
+  lua_pushinteger(L, t.step_cuts);
+  lua_setfield(L, -2, "step_cuts");
+  lua_pushinteger(L, t.open_close_iterations);
+  lua_setfield(L, -2, "open_close_iterations");
+  lua_pushinteger(L, t.cg_iterations);
+  lua_setfield(L, -2, "cg_iterations");
+  lua_pushnumber(L, t.wall_seconds);
+  lua_setfield(L, -2, "wall_seconds");
+  lua_pushnumber(L, t.wall_seconds > 0 ? t.steps / t.wall_seconds : 0);
+  lua_setfield(L, -2, "steps_per_second");
+  return 1;
+}
+int m_hash(lua_State* L) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%016" PRIx64, static_cast<std::uint64_t>(check_model(L, 1, "m:hash").world().state_hash()));
+  lua_pushstring(L, buf);
+  return 1;
+}
+int m_half_height(lua_State* L) {
+  lua_pushnumber(L, check_model(L, 1, "m:half_height").world().half_height());
+  return 1;
+}
+
+ContactState parse_state(const std::string& s, const char* call) {
+  if (s == "open") return ContactState::Open;
+  if (s == "sliding") return ContactState::Sliding;
+  if (s == "locked") return ContactState::Locked;
+  fail(call, ": option 'state' must be \"open\", \"sliding\" or \"locked\", got \"", s, "\"");
+}
+
+// m:contacts{state = "sliding", block = b} → array of contact tables
+int m_contacts(lua_State* L) {
+  ScriptModel& m = check_model(L, 1, "m:contacts");
+  std::optional<ContactState> state;
+  std::optional<BlockId> block;
+  if (!lua_isnoneornil(L, 2)) {
+    const Options o(L, 2, "m:contacts", {"state", "block"});
+    if (o.has("state")) state = parse_state(o.string("state"), "m:contacts");
+    if (o.has("block")) {
+      o.push("block");
+      block = check_block(L, -1, &m, "m:contacts", "option 'block'");
+      lua_pop(L, 1);
+    }
+  }
+  lua_newtable(L);
+  const int out = lua_gettop(L);
+  lua_Integer n = 0;
+  for (const Contact& c : m.world().contacts()) {
+    if (state && c.state != *state) continue;
+    if (block && c.vblock != *block && c.eblock != *block) continue;
+    lua_createtable(L, 0, 12);
+    push_block(L, 1, c.vblock);
+    lua_setfield(L, -2, "vblock");
+    lua_pushinteger(L, c.vertex + 1);
+    lua_setfield(L, -2, "vertex");
+    push_block(L, 1, c.eblock);
+    lua_setfield(L, -2, "eblock");
+    lua_pushinteger(L, c.edge + 1);
+    lua_setfield(L, -2, "edge");
+    lua_pushstring(L, to_string(c.state));
+    lua_setfield(L, -2, "state");
+    lua_pushboolean(L, c.intact);
+    lua_setfield(L, -2, "intact");
+    push_joint(L, 1, c.joint);
+    lua_setfield(L, -2, "joint");
+    lua_pushnumber(L, c.normal_force);
+    lua_setfield(L, -2, "normal_force");
+    lua_pushnumber(L, c.shear_force);
+    lua_setfield(L, -2, "shear_force");
+    lua_pushnumber(L, c.penetration);
+    lua_setfield(L, -2, "penetration");
+    lua_pushnumber(L, c.length);
+    lua_setfield(L, -2, "length");
+    lua_rawseti(L, out, ++n);
+  }
+  return 1;
+}
+
+// m:contact_summary() → {total, open, sliding, locked, intact}
+int m_contact_summary(lua_State* L) {
+  ScriptModel& m = check_model(L, 1, "m:contact_summary");
+  long open = 0, sliding = 0, locked = 0, intact = 0;
+  for (const Contact& c : m.world().contacts()) {
+    open += c.state == ContactState::Open;
+    sliding += c.state == ContactState::Sliding;
+    locked += c.state == ContactState::Locked;
+    intact += c.intact;
+  }
+  lua_createtable(L, 0, 5);
+  lua_pushinteger(L, static_cast<lua_Integer>(m.world().contacts().size()));
+  lua_setfield(L, -2, "total");
+  lua_pushinteger(L, open);
+  lua_setfield(L, -2, "open");
+  lua_pushinteger(L, sliding);
+  lua_setfield(L, -2, "sliding");
+  lua_pushinteger(L, locked);
+  lua_setfield(L, -2, "locked");
+  lua_pushinteger(L, intact);
+  lua_setfield(L, -2, "intact");
+  return 1;
+}
+
+// m:close(): frees the model now; every handle into it becomes invalid.
+int m_close(lua_State* L) {
+  auto* box = static_cast<ModelBox*>(luaL_testudata(L, 1, kModelType));
+  if (!box || !box->model) fail("m:close: expected a model as self, got ", type_of(L, 1));
+  check_not_busy(*box->model, "m:close");
+  box->model->close();
+  return 0;
+}
+
+int m_gc(lua_State* L) {
+  auto* box = static_cast<ModelBox*>(lua_touserdata(L, 1));
+  delete box->model;
+  box->model = nullptr;
+  return 0;
+}
+
+int m_tostring(lua_State* L) {
+  auto* box = static_cast<ModelBox*>(luaL_testudata(L, 1, kModelType));
+  if (!box || !box->model || box->model->closed()) {
+    lua_pushliteral(L, "dda.Model (closed)");
+    return 1;
+  }
+  const World& w = box->model->world();
+  lua_pushfstring(L, "dda.Model (%d blocks, %d contacts, step %d, t = %f s)", static_cast<int>(w.block_count()),
+                  static_cast<int>(w.contacts().size()), static_cast<int>(w.step_count()), w.time());
+  return 1;
+}
+
+}  // namespace
+
+void register_model(lua_State* L) {
+  static const luaL_Reg methods[] = {{"controls", guarded<m_controls>},
+                                     {"gravity", guarded<m_gravity>},
+                                     {"step", guarded<m_step>},
+                                     {"run_until", guarded<m_run_until>},
+                                     {"run", guarded<m_run>},
+                                     {"time", guarded<m_time>},
+                                     {"steps", guarded<m_steps>},
+                                     {"dt", guarded<m_dt>},
+                                     {"suggested_dt", guarded<m_suggested_dt>},
+                                     {"stats", guarded<m_stats>},
+                                     {"totals", guarded<m_totals>},
+                                     {"hash", guarded<m_hash>},
+                                     {"half_height", guarded<m_half_height>},
+                                     {"contacts", guarded<m_contacts>},
+                                     {"contact_summary", guarded<m_contact_summary>},
+                                     {"close", guarded<m_close>},
+                                     {nullptr, nullptr}};
+  static const luaL_Reg meta[] = {{"__gc", m_gc}, {"__tostring", m_tostring}, {nullptr, nullptr}};
+  define_type(L, kModelType, methods, meta);
+}
+
+}  // namespace dda::script

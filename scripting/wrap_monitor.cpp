@@ -1,0 +1,287 @@
+// dda.Monitor: a material point whose fields are recorded every N steps into
+// memory and into <out>/<name>.csv (header line, one row per recorded step,
+// flushed row by row).
+#include <cerrno>
+#include <cmath>
+#include <cstring>
+#include <system_error>
+
+#include "session.hpp"
+#include "wrap.hpp"
+
+namespace dda::script {
+
+namespace {
+
+bool valid_name(const std::string& s) {
+  if (s.empty()) return false;
+  for (char c : s)
+    if (!(std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-' || c == '.')) return false;
+  return s != "." && s != "..";
+}
+
+// m:monitor{at = {x, y}, fields = {"sxx", ...}, every = 1, name = "centre", block = b, csv = true} → Monitor
+int m_monitor(lua_State* L) {
+  ScriptModel& m = check_model(L, 1, "m:monitor");
+  check_not_busy(m, "m:monitor");
+  Session& session_ = session(L);
+  const Options o(L, 2, "m:monitor", {"at", "fields", "every", "name", "block", "csv"});
+  auto mon = std::make_unique<Monitor>();
+  mon->point = o.point("at");
+  BlockId b;
+  if (o.has("block")) {
+    o.push("block");
+    b = check_block(L, -1, &m, "m:monitor", "option 'block'");
+    lua_pop(L, 1);
+  } else {
+    const auto found = m.block_at(mon->point);
+    if (!found)
+      fail("m:monitor: no block at (", mon->point.x(), ", ", mon->point.y(), "); give block = ... or a point inside a block");
+    b = *found;
+  }
+  // fields
+  if (o.push("fields") != LUA_TTABLE) {
+    lua_pop(L, 1);
+    fail("m:monitor: option 'fields' is required: a list of field names from ", field_list());
+  }
+  const int ft = lua_gettop(L);
+  const auto nf = static_cast<int>(lua_rawlen(L, ft));
+  if (nf == 0) fail("m:monitor: option 'fields' is empty; choose from ", field_list());
+  for (int k = 1; k <= nf; ++k) {
+    lua_rawgeti(L, ft, k);
+    if (lua_type(L, -1) != LUA_TSTRING) fail("m:monitor: option 'fields' entry ", k, " must be a field name, got ", type_of(L, -1));
+    const std::string name = lua_tostring(L, -1);
+    lua_pop(L, 1);
+    const auto f = parse_field(name);
+    if (!f) fail("m:monitor: unknown field '", name, "' in option 'fields'; known fields: ", field_list());
+    for (Field g : mon->fields)
+      if (g == *f) fail("m:monitor: field '", name, "' is listed twice in option 'fields'");
+    mon->fields.push_back(*f);
+  }
+  lua_pop(L, 1);
+  const long every = o.integer("every", 1);
+  if (every < 1) fail("m:monitor: option 'every' must be at least 1, got ", every);
+  mon->every = static_cast<int>(every);
+  mon->name = o.string("name", msg("monitor", session_.files.size() + 1));
+  if (!valid_name(mon->name))
+    fail("m:monitor: option 'name' must be a plain file name (letters, digits, '_', '-', '.'), got \"", mon->name, "\"");
+
+  if (o.boolean("csv", true)) {
+    std::error_code ec;
+    std::filesystem::create_directories(session_.out_dir, ec);
+    if (ec) fail("m:monitor: cannot create the output folder '", session_.out_dir.string(), "': ", ec.message());
+    mon->path = session_.out_dir / (mon->name + ".csv");
+    const std::string key = std::filesystem::weakly_canonical(mon->path, ec).string();
+    if (session_.files.count(key))
+      fail("m:monitor: another monitor already writes ", mon->path.string(), " in this run; give this one another name");
+    mon->file = std::fopen(mon->path.c_str(), "w");
+    if (!mon->file) fail("m:monitor: cannot write ", mon->path.string(), ": ", std::strerror(errno));
+    session_.files.insert(key);
+    std::fputs("step,time", mon->file);
+    for (Field f : mon->fields) std::fprintf(mon->file, ",%s", field_name(f));
+    std::fputc('\n', mon->file);
+    std::fflush(mon->file);
+  } else {
+    session_.files.insert(msg("(memory) ", mon->name, " ", session_.files.size()));
+  }
+  mon->tracked = m.world().add_tracked_point(b, mon->point);
+  mon->values.resize(mon->fields.size());
+  const int id = m.add_monitor(std::move(mon));
+  push_monitor(L, 1, id);
+  return 1;
+}
+
+// m:monitors() → list of every monitor of the model
+int m_monitors(lua_State* L) {
+  ScriptModel& m = check_model(L, 1, "m:monitors");
+  lua_createtable(L, m.monitor_count(), 0);
+  for (int i = 0; i < m.monitor_count(); ++i) {
+    push_monitor(L, 1, i);
+    lua_rawseti(L, -2, i + 1);
+  }
+  return 1;
+}
+
+// ---- dda.Monitor --------------------------------------------------------------------------------
+
+struct Self {
+  ScriptModel* model;
+  Monitor* mon;
+};
+Self self_monitor(lua_State* L, const char* call) {
+  Handle* h = check_handle(L, 1, kMonitorType, call, "self");
+  if (h->id < 0 || h->id >= h->model->monitor_count()) fail(call, ": attempt to use an invalid monitor");
+  return {h->model, &h->model->monitor(h->id)};
+}
+
+// The column of `field` (argument idx) in this monitor.
+std::size_t field_arg(lua_State* L, int idx, const Monitor& mon, const char* call) {
+  const std::string name = check_string(L, idx, call, "argument 1 (field)");
+  const auto f = parse_field(name);
+  if (!f) fail(call, ": unknown field '", name, "'; known fields: ", field_list());
+  for (std::size_t k = 0; k < mon.fields.size(); ++k)
+    if (mon.fields[k] == *f) return k;
+  std::string have;
+  for (Field g : mon.fields) have += have.empty() ? field_name(g) : std::string(", ") + field_name(g);
+  fail(call, ": monitor '", mon.name, "' does not record '", name, "' (it records ", have, ")");
+}
+
+void push_numbers(lua_State* L, const std::vector<double>& v) {
+  lua_createtable(L, static_cast<int>(v.size()), 0);
+  for (std::size_t i = 0; i < v.size(); ++i) {
+    lua_pushnumber(L, v[i]);
+    lua_rawseti(L, -2, static_cast<lua_Integer>(i + 1));
+  }
+}
+
+int mon_name(lua_State* L) {
+  lua_pushstring(L, self_monitor(L, "monitor:name").mon->name.c_str());
+  return 1;
+}
+int mon_file(lua_State* L) {
+  const Self s = self_monitor(L, "monitor:file");
+  if (s.mon->path.empty())
+    lua_pushnil(L);
+  else
+    lua_pushstring(L, s.mon->path.c_str());
+  return 1;
+}
+int mon_fields(lua_State* L) {
+  const Self s = self_monitor(L, "monitor:fields");
+  lua_createtable(L, static_cast<int>(s.mon->fields.size()), 0);
+  for (std::size_t k = 0; k < s.mon->fields.size(); ++k) {
+    lua_pushstring(L, field_name(s.mon->fields[k]));
+    lua_rawseti(L, -2, static_cast<lua_Integer>(k + 1));
+  }
+  return 1;
+}
+int mon_count(lua_State* L) {
+  lua_pushinteger(L, static_cast<lua_Integer>(self_monitor(L, "monitor:count").mon->times.size()));
+  return 1;
+}
+int mon_times(lua_State* L) {
+  push_numbers(L, self_monitor(L, "monitor:times").mon->times);
+  return 1;
+}
+int mon_steps(lua_State* L) {
+  const Self s = self_monitor(L, "monitor:steps");
+  lua_createtable(L, static_cast<int>(s.mon->steps.size()), 0);
+  for (std::size_t i = 0; i < s.mon->steps.size(); ++i) {
+    lua_pushinteger(L, s.mon->steps[i]);
+    lua_rawseti(L, -2, static_cast<lua_Integer>(i + 1));
+  }
+  return 1;
+}
+// monitor:series("sxx") → {v1, v2, ...} (one per recorded row)
+int mon_series(lua_State* L) {
+  const Self s = self_monitor(L, "monitor:series");
+  push_numbers(L, s.mon->values[field_arg(L, 2, *s.mon, "monitor:series")]);
+  return 1;
+}
+// monitor:value("sxx") → the value now (not necessarily recorded)
+int mon_value(lua_State* L) {
+  const Self s = self_monitor(L, "monitor:value");
+  const std::string name = check_string(L, 2, "monitor:value", "argument 1 (field)");
+  const auto f = parse_field(name);
+  if (!f) fail("monitor:value: unknown field '", name, "'; known fields: ", field_list());
+  lua_pushnumber(L, s.model->field_value(*s.mon, *f));
+  return 1;
+}
+// monitor:last("sxx") → last recorded value, its time (nil when nothing recorded)
+int mon_last(lua_State* L) {
+  const Self s = self_monitor(L, "monitor:last");
+  const std::size_t k = field_arg(L, 2, *s.mon, "monitor:last");
+  if (s.mon->times.empty()) {
+    lua_pushnil(L);
+    return 1;
+  }
+  lua_pushnumber(L, s.mon->values[k].back());
+  lua_pushnumber(L, s.mon->times.back());
+  return 2;
+}
+int extreme(lua_State* L, const char* call, int mode) {  // 0 max, 1 min, 2 peak |v|
+  const Self s = self_monitor(L, call);
+  const std::size_t k = field_arg(L, 2, *s.mon, call);
+  const auto& v = s.mon->values[k];
+  if (v.empty()) {
+    lua_pushnil(L);
+    return 1;
+  }
+  std::size_t best = 0;
+  for (std::size_t i = 1; i < v.size(); ++i) {
+    const bool better = mode == 0 ? v[i] > v[best] : mode == 1 ? v[i] < v[best] : std::fabs(v[i]) > std::fabs(v[best]);
+    if (better) best = i;
+  }
+  lua_pushnumber(L, v[best]);
+  lua_pushnumber(L, s.mon->times[best]);
+  return 2;
+}
+// monitor:max("sxx") → value, time; monitor:min; monitor:peak (largest |value|)
+int mon_max(lua_State* L) { return extreme(L, "monitor:max", 0); }
+int mon_min(lua_State* L) { return extreme(L, "monitor:min", 1); }
+int mon_peak(lua_State* L) { return extreme(L, "monitor:peak", 2); }
+// monitor:row(i) → {step = , time = , sxx = , ...}; i from 1, negative from the end
+int mon_row(lua_State* L) {
+  const Self s = self_monitor(L, "monitor:row");
+  long i = check_integer(L, 2, "monitor:row", "argument 1 (row)");
+  const long n = static_cast<long>(s.mon->times.size());
+  if (i < 0) i = n + 1 + i;
+  if (i < 1 || i > n) {
+    lua_pushnil(L);
+    return 1;
+  }
+  lua_createtable(L, 0, static_cast<int>(s.mon->fields.size()) + 2);
+  lua_pushinteger(L, s.mon->steps[i - 1]);
+  lua_setfield(L, -2, "step");
+  lua_pushnumber(L, s.mon->times[i - 1]);
+  lua_setfield(L, -2, "time");
+  for (std::size_t k = 0; k < s.mon->fields.size(); ++k) {
+    lua_pushnumber(L, s.mon->values[k][i - 1]);
+    lua_setfield(L, -2, field_name(s.mon->fields[k]));
+  }
+  return 1;
+}
+int mon_block(lua_State* L) {
+  const Self s = self_monitor(L, "monitor:block");
+  push_model_of(L, 1);
+  push_block(L, -1, s.model->world().tracked_block(s.mon->tracked));
+  return 1;
+}
+// monitor:position() → x, y of the material point now
+int mon_position(lua_State* L) {
+  const Self s = self_monitor(L, "monitor:position");
+  const Vec2 p = s.model->world().tracked_position(s.mon->tracked);
+  lua_pushnumber(L, p.x());
+  lua_pushnumber(L, p.y());
+  return 2;
+}
+int mon_tostring(lua_State* L) {
+  auto* h = static_cast<Handle*>(luaL_checkudata(L, 1, kMonitorType));
+  if (!h->model || h->model->closed() || h->id >= h->model->monitor_count()) {
+    lua_pushliteral(L, "dda.Monitor (invalid)");
+    return 1;
+  }
+  const Monitor& mon = h->model->monitor(h->id);
+  lua_pushfstring(L, "dda.Monitor '%s' (%d rows)", mon.name.c_str(), static_cast<int>(mon.times.size()));
+  return 1;
+}
+
+}  // namespace
+
+void register_monitor(lua_State* L) {
+  static const luaL_Reg model_methods[] = {
+      {"monitor", guarded<m_monitor>}, {"monitors", guarded<m_monitors>}, {nullptr, nullptr}};
+  add_model_methods(L, model_methods);
+  static const luaL_Reg methods[] = {{"name", guarded<mon_name>},     {"file", guarded<mon_file>},
+                                     {"fields", guarded<mon_fields>}, {"count", guarded<mon_count>},
+                                     {"times", guarded<mon_times>},   {"steps", guarded<mon_steps>},
+                                     {"series", guarded<mon_series>}, {"value", guarded<mon_value>},
+                                     {"last", guarded<mon_last>},     {"max", guarded<mon_max>},
+                                     {"min", guarded<mon_min>},       {"peak", guarded<mon_peak>},
+                                     {"row", guarded<mon_row>},       {"block", guarded<mon_block>},
+                                     {"position", guarded<mon_position>}, {nullptr, nullptr}};
+  static const luaL_Reg meta[] = {{"__tostring", mon_tostring}, {nullptr, nullptr}};
+  define_type(L, kMonitorType, methods, meta);
+}
+
+}  // namespace dda::script

@@ -1,0 +1,404 @@
+// Rendering from Lua (render/, issue 6), when the renderer is built:
+//   m:frame{file = "t.png", field = "sigma_xx", ...}     one frame now
+//   m:frames{folder = "frames", every = 10, ...}         a numbered sequence during the run (dda.Frames)
+//   dda.plot{file = "p.png", series = {...}, ...}        a line plot of histories
+//   monitor:plot{field = "sxx", file = "p.png", ...}     a monitor's history
+// Frames are captured on the Lua thread between steps (a copy of the World's
+// arrays) and rendered and encoded on the renderer's worker thread.
+#include "wrap.hpp"
+
+#ifdef DDA_HAVE_RENDER
+
+#include <cstring>
+
+#include "render.hpp"
+#include "session.hpp"
+
+namespace dda::script {
+
+namespace {
+
+constexpr const char* kFramesType = "dda.Frames";
+
+// The model's rendering state: where blocks started (for magnified
+// deformation), the monitors to mark, and the frame sequences.
+struct RenderHook : StepHook {
+  render::WorldSnapshot snapshot;  // for single frames
+  std::vector<std::unique_ptr<render::FrameSequence>> sequences;
+
+  void before_step(const World& w) override {
+    if (!snapshot.has_initial()) snapshot.record_initial(w);
+    for (auto& s : sequences) {
+      if (!s->snapshot().has_initial()) s->snapshot().record_initial(w);
+      s->maybe_capture(w);  // the state before the first step (a no-op when already taken)
+    }
+  }
+  void after_step(const World& w) override {
+    for (auto& s : sequences) s->maybe_capture(w);
+  }
+  void monitor_added(int tracked, const std::string& name) override {
+    snapshot.add_monitor(tracked, name);
+    for (auto& s : sequences) s->snapshot().add_monitor(tracked, name);
+  }
+};
+
+RenderHook& render_hook(ScriptModel& m) {
+  for (const auto& h : m.hooks())
+    if (auto* r = dynamic_cast<RenderHook*>(h.get())) return *r;
+  auto hook = std::make_unique<RenderHook>();
+  for (int i = 0; i < m.monitor_count(); ++i) hook->snapshot.add_monitor(m.monitor(i).tracked, m.monitor(i).name);
+  return static_cast<RenderHook&>(m.add_hook(std::move(hook)));
+}
+
+std::filesystem::path in_out_dir(lua_State* L, const std::string& file) {
+  const std::filesystem::path p(file);
+  return p.is_absolute() ? p : session(L).out_dir / p;
+}
+
+void create_parent(const std::filesystem::path& p, const std::string& call) {
+  if (!p.has_parent_path()) return;
+  std::error_code ec;
+  std::filesystem::create_directories(p.parent_path(), ec);
+  if (ec) fail(call, ": cannot create the folder '", p.parent_path().string(), "': ", ec.message());
+}
+
+render::Rgb read_rgb(const Options& o, const char* key) {
+  lua_State* L = o.state();
+  o.push(key);
+  const int t = lua_gettop(L);
+  if (lua_type(L, t) != LUA_TTABLE || lua_rawlen(L, t) != 3) fail(o.call(), ": option '", key, "' must be {r, g, b} (0-255)");
+  int c[3];
+  for (int k = 0; k < 3; ++k) {
+    lua_rawgeti(L, t, k + 1);
+    const double v = lua_tonumber(L, -1);
+    const bool ok = lua_type(L, -1) == LUA_TNUMBER && v >= 0 && v <= 255;
+    lua_pop(L, 1);
+    if (!ok) fail(o.call(), ": option '", key, "' must be {r, g, b} with each in 0-255");
+    c[k] = static_cast<int>(v + 0.5);
+  }
+  lua_pop(L, 1);
+  return render::Rgb{static_cast<std::uint8_t>(c[0]), static_cast<std::uint8_t>(c[1]), static_cast<std::uint8_t>(c[2])};
+}
+
+#define DDA_FRAME_KEYS                                                                                          \
+  "field", "width", "height", "colormap", "range", "view", "magnify", "edges", "edge_width", "contacts",      \
+      "monitors", "velocity", "arrow_scale", "colorbar", "info", "title", "background", "supersample"
+
+render::FrameOptions read_frame_options(const Options& o) {
+  render::FrameOptions f;
+  if (o.has("field")) f.field = render::parse_field(o.string("field"));
+  f.width = static_cast<int>(o.integer("width", f.width));
+  f.height = static_cast<int>(o.integer("height", f.height));
+  if (o.has("colormap")) f.colormap = render::parse_colormap(o.string("colormap"));
+  if (o.has("range")) {
+    const Vec2 r = o.point("range");
+    if (!(r.y() > r.x())) fail(o.call(), ": option 'range' must be {min, max} with min < max");
+    f.range = render::ValueRange{r.x(), r.y()};
+  }
+  if (o.has("view")) {
+    const auto q = o.quad("view");
+    f.view = render::Box{std::min(q[0], q[2]), std::min(q[1], q[3]), std::max(q[0], q[2]), std::max(q[1], q[3])};
+  }
+  f.magnify = o.positive("magnify", f.magnify);
+  f.show_edges = o.boolean("edges", f.show_edges);
+  f.edge_width = o.positive("edge_width", f.edge_width);
+  f.show_contacts = o.boolean("contacts", f.show_contacts);
+  f.show_monitors = o.boolean("monitors", f.show_monitors);
+  f.show_velocity = o.boolean("velocity", f.show_velocity);
+  f.arrow_scale = o.non_negative("arrow_scale", f.arrow_scale);
+  f.show_colorbar = o.boolean("colorbar", f.show_colorbar);
+  f.show_info = o.boolean("info", f.show_info);
+  f.title = o.string("title", f.title);
+  if (o.has("background")) f.background = read_rgb(o, "background");
+  f.supersample = static_cast<int>(o.integer("supersample", f.supersample));
+  f.validate();
+  return f;
+}
+
+// m:frame{file = "frame.png", field = ..., ...} → path written
+int m_frame(lua_State* L) {
+  ScriptModel& m = check_model(L, 1, "m:frame");
+  check_not_busy(m, "m:frame");
+  const Options o(L, 2, "m:frame", {"file", DDA_FRAME_KEYS});
+  const render::FrameOptions f = read_frame_options(o);
+  const auto path = in_out_dir(L, o.string("file"));
+  create_parent(path, "m:frame");
+  RenderHook& hook = render_hook(m);
+  render::write_frame(m.world(), path, f, hook.snapshot.has_initial() ? &hook.snapshot : nullptr);
+  lua_pushstring(L, path.c_str());
+  return 1;
+}
+
+// m:frames{folder = "frames", every = N | every_time = dt, prefix, digits, on_error = "stop" | "continue", ...}
+int m_frames(lua_State* L) {
+  ScriptModel& m = check_model(L, 1, "m:frames");
+  check_not_busy(m, "m:frames");
+  const Options o(L, 2, "m:frames", {"folder", "every", "every_time", "prefix", "digits", "on_error", DDA_FRAME_KEYS});
+  render::SequenceOptions so;
+  so.frame = read_frame_options(o);
+  so.folder = in_out_dir(L, o.string("folder", "frames"));
+  so.prefix = o.string("prefix", "");
+  so.every_steps = o.integer("every", 0);
+  if (so.every_steps < 0) fail("m:frames: option 'every' must be positive, got ", so.every_steps);
+  so.every_time = o.non_negative("every_time", 0);
+  so.digits = static_cast<int>(o.integer("digits", so.digits));
+  const std::string on_error = o.string("on_error", "stop");
+  if (on_error == "stop")
+    so.on_error = render::OnError::Stop;
+  else if (on_error == "continue")
+    so.on_error = render::OnError::Continue;
+  else
+    fail("m:frames: option 'on_error' must be \"stop\" or \"continue\", got \"", on_error, "\"");
+  RenderHook& hook = render_hook(m);
+  auto seq = std::make_unique<render::FrameSequence>(std::move(so));
+  for (int i = 0; i < m.monitor_count(); ++i) seq->snapshot().add_monitor(m.monitor(i).tracked, m.monitor(i).name);
+  if (m.world().step_count() == 0 && m.world().block_count() > 0) seq->snapshot().record_initial(m.world());
+  hook.sequences.push_back(std::move(seq));
+  push_handle(L, 1, kFramesType, static_cast<int>(hook.sequences.size()) - 1);
+  return 1;
+}
+
+render::FrameSequence& self_frames(lua_State* L, const char* call) {
+  Handle* h = check_handle(L, 1, kFramesType, call, "self");
+  RenderHook& hook = render_hook(*h->model);
+  if (h->id < 0 || h->id >= static_cast<int>(hook.sequences.size())) fail(call, ": attempt to use an invalid frame sequence");
+  return *hook.sequences[h->id];
+}
+
+int fr_count(lua_State* L) {
+  lua_pushinteger(L, self_frames(L, "frames:count").frame_count());
+  return 1;
+}
+// frames:capture(): a frame now, due or not
+int fr_capture(lua_State* L) {
+  Handle* h = check_handle(L, 1, kFramesType, "frames:capture", "self");
+  self_frames(L, "frames:capture").capture(h->model->world());
+  return 0;
+}
+// frames:flush(): waits for the queued frames; raises their errors
+int fr_flush(lua_State* L) {
+  self_frames(L, "frames:flush").flush();
+  return 0;
+}
+int fr_path(lua_State* L) {
+  render::FrameSequence& s = self_frames(L, "frames:path");
+  const long i = lua_isnoneornil(L, 2) ? s.frame_count() - 1 : check_integer(L, 2, "frames:path", "argument 1 (index)");
+  lua_pushstring(L, s.frame_path(static_cast<int>(i)).c_str());
+  return 1;
+}
+int fr_folder(lua_State* L) {
+  lua_pushstring(L, self_frames(L, "frames:folder").options().folder.c_str());
+  return 1;
+}
+int fr_active(lua_State* L) {
+  render::FrameSequence& s = self_frames(L, "frames:active");
+  lua_pushboolean(L, s.active());
+  if (s.last_error().empty()) return 1;
+  lua_pushstring(L, s.last_error().c_str());
+  return 2;
+}
+int fr_tostring(lua_State* L) {
+  auto* h = static_cast<Handle*>(luaL_checkudata(L, 1, kFramesType));
+  lua_pushfstring(L, "dda.Frames %d", static_cast<int>(h->id + 1));
+  return 1;
+}
+
+// ---- plots ----------------------------------------------------------------------------
+
+render::LegendPosition parse_legend(const std::string& s, const std::string& call) {
+  if (s == "best") return render::LegendPosition::Best;
+  if (s == "top_right") return render::LegendPosition::TopRight;
+  if (s == "top_left") return render::LegendPosition::TopLeft;
+  if (s == "bottom_right") return render::LegendPosition::BottomRight;
+  if (s == "bottom_left") return render::LegendPosition::BottomLeft;
+  if (s == "none") return render::LegendPosition::None;
+  fail(call, ": option 'legend' must be best, top_right, top_left, bottom_right, bottom_left or none, got \"", s, "\"");
+}
+
+std::vector<double> read_numbers(lua_State* L, int idx, const std::string& call, const std::string& what) {
+  if (lua_type(L, idx) != LUA_TTABLE) fail(call, ": ", what, " must be a list of numbers, got ", type_of(L, idx));
+  const auto n = lua_rawlen(L, idx);
+  std::vector<double> v(n);
+  for (lua_Unsigned i = 1; i <= n; ++i) {
+    lua_rawgeti(L, idx, static_cast<lua_Integer>(i));
+    if (lua_type(L, -1) != LUA_TNUMBER) fail(call, ": ", what, " entry ", i, " must be a number, got ", type_of(L, -1));
+    v[i - 1] = lua_tonumber(L, -1);
+    lua_pop(L, 1);
+  }
+  return v;
+}
+
+// One series: {name = , x = {...}, y = {...}, color = {r, g, b}, width = } or
+// {name = , monitor = mon, field = "sxx"} (x = the monitor's times).
+render::Series read_series(lua_State* L, int idx, const std::string& call) {
+  const Options o(L, idx, call, {"name", "x", "y", "monitor", "field", "color", "width"});
+  render::Series s;
+  s.name = o.string("name", "");
+  if (o.has("monitor")) {
+    if (o.has("x") || o.has("y")) fail(call, ": give either monitor and field, or x and y");
+    o.push("monitor");
+    Handle* h = check_handle(L, -1, kMonitorType, call, "option 'monitor'");
+    lua_pop(L, 1);
+    const Monitor& mon = h->model->monitor(h->id);
+    const std::string field = o.string("field");
+    const auto f = parse_field(field);
+    if (!f) fail(call, ": unknown field '", field, "'; known fields: ", field_list());
+    std::size_t k = mon.fields.size();
+    for (std::size_t i = 0; i < mon.fields.size(); ++i)
+      if (mon.fields[i] == *f) k = i;
+    if (k == mon.fields.size()) fail(call, ": monitor '", mon.name, "' does not record '", field, "'");
+    s.x = mon.times;
+    s.y = mon.values[k];
+    if (s.name.empty()) s.name = msg(mon.name, " ", field);
+  } else {
+    o.push("x");
+    s.x = read_numbers(L, -1, call, "option 'x'");
+    lua_pop(L, 1);
+    o.push("y");
+    s.y = read_numbers(L, -1, call, "option 'y'");
+    lua_pop(L, 1);
+    if (s.x.size() != s.y.size()) fail(call, ": options 'x' and 'y' have ", s.x.size(), " and ", s.y.size(), " entries");
+  }
+  if (o.has("color")) s.color = read_rgb(o, "color");
+  s.width = o.positive("width", s.width);
+  return s;
+}
+
+#define DDA_PLOT_KEYS                                                                                            \
+  "file", "title", "x_label", "x_unit", "y_label", "y_unit", "x_scale", "y_scale", "width", "height", "x_range", \
+      "y_range", "legend", "grid", "background"
+
+void read_plot_options(const Options& o, render::PlotSpec& p) {
+  p.title = o.string("title", p.title);
+  p.x_label = o.string("x_label", p.x_label);
+  p.x_unit = o.string("x_unit", p.x_unit);
+  p.y_label = o.string("y_label", p.y_label);
+  p.y_unit = o.string("y_unit", p.y_unit);
+  p.x_scale = o.number("x_scale", p.x_scale);
+  p.y_scale = o.number("y_scale", p.y_scale);
+  p.width = static_cast<int>(o.integer("width", p.width));
+  p.height = static_cast<int>(o.integer("height", p.height));
+  if (o.has("x_range")) {
+    const Vec2 r = o.point("x_range");
+    p.x_range = render::AxisRange{r.x(), r.y()};
+  }
+  if (o.has("y_range")) {
+    const Vec2 r = o.point("y_range");
+    p.y_range = render::AxisRange{r.x(), r.y()};
+  }
+  if (o.has("legend")) p.legend = parse_legend(o.string("legend"), o.call());
+  p.grid = o.boolean("grid", p.grid);
+  if (o.has("background")) p.background = read_rgb(o, "background");
+}
+
+// A plot against time. (Strings swapped in: GCC 12 warns falsely, -Wrestrict,
+// about assigning literals here.)
+render::PlotSpec time_plot() {
+  render::PlotSpec p;
+  std::string label("time"), unit("s");
+  p.x_label.swap(label);
+  p.x_unit.swap(unit);
+  return p;
+}
+
+// dda.plot{file = "plot.png", series = {{...}, ...}, title, x_label, ...} → path
+int dda_plot(lua_State* L) {
+  const Options o(L, 1, "dda.plot", {"series", DDA_PLOT_KEYS});
+  render::PlotSpec p = time_plot();
+  read_plot_options(o, p);
+  if (o.push("series") != LUA_TTABLE) fail("dda.plot: option 'series' must be a list of series {name =, x =, y =} or {monitor =, field =}");
+  const int t = lua_gettop(L);
+  for (lua_Unsigned i = 1; i <= lua_rawlen(L, t); ++i) {
+    lua_rawgeti(L, t, static_cast<lua_Integer>(i));
+    p.series.push_back(read_series(L, -1, msg("dda.plot series ", i)));
+    lua_pop(L, 1);
+  }
+  lua_pop(L, 1);
+  const auto path = in_out_dir(L, o.string("file"));
+  create_parent(path, "dda.plot");
+  p.validate();
+  render::write_plot_png(p, path);
+  lua_pushstring(L, path.c_str());
+  return 1;
+}
+
+// monitor:plot{field = "sxx", file = "sxx.png", ...plot options} → path
+int mon_plot(lua_State* L) {
+  Handle* h = check_handle(L, 1, kMonitorType, "monitor:plot", "self");
+  const Monitor& mon = h->model->monitor(h->id);
+  const Options o(L, 2, "monitor:plot", {"field", DDA_PLOT_KEYS});
+  const std::string field = o.string("field");
+  const auto f = parse_field(field);
+  if (!f) fail("monitor:plot: unknown field '", field, "'; known fields: ", field_list());
+  std::size_t k = mon.fields.size();
+  for (std::size_t i = 0; i < mon.fields.size(); ++i)
+    if (mon.fields[i] == *f) k = i;
+  if (k == mon.fields.size()) fail("monitor:plot: monitor '", mon.name, "' does not record '", field, "'");
+  render::PlotSpec p = time_plot();
+  p.title = mon.name;
+  p.y_label = field;
+  const bool stress = *f == Field::Sxx || *f == Field::Syy || *f == Field::Txy;
+  const bool velocity = *f == Field::Vx || *f == Field::Vy;
+  p.y_unit = stress ? "MPa" : velocity ? "m/s" : "m";
+  p.y_scale = stress ? 1e-6 : 1;
+  read_plot_options(o, p);
+  p.series.push_back(render::Series{field, mon.times, mon.values[k], std::nullopt, 2});
+  p.legend = o.has("legend") ? p.legend : render::LegendPosition::None;
+  const auto path = in_out_dir(L, o.string("file"));
+  create_parent(path, "monitor:plot");
+  p.validate();
+  render::write_plot_png(p, path);
+  lua_pushstring(L, path.c_str());
+  return 1;
+}
+
+}  // namespace
+
+void register_render(lua_State* L) {
+  static const luaL_Reg model_methods[] = {{"frame", guarded<m_frame>}, {"frames", guarded<m_frames>}, {nullptr, nullptr}};
+  add_model_methods(L, model_methods);
+  static const luaL_Reg methods[] = {{"count", guarded<fr_count>},   {"capture", guarded<fr_capture>},
+                                     {"flush", guarded<fr_flush>},   {"path", guarded<fr_path>},
+                                     {"folder", guarded<fr_folder>}, {"active", guarded<fr_active>},
+                                     {nullptr, nullptr}};
+  static const luaL_Reg meta[] = {{"__tostring", fr_tostring}, {nullptr, nullptr}};
+  define_type(L, kFramesType, methods, meta);
+  // monitor:plot
+  luaL_getmetatable(L, kMonitorType);
+  lua_getfield(L, -1, "__methods");
+  lua_pushcfunction(L, guarded<mon_plot>);
+  lua_setfield(L, -2, "plot");
+  lua_pop(L, 2);
+}
+
+void register_render_functions(lua_State* L) {
+  lua_pushcfunction(L, guarded<dda_plot>);
+  lua_setfield(L, -2, "plot");
+}
+
+void attach_session_frames(lua_State* L, int model_idx) {
+  const Session& s = session(L);
+  if (s.frames_every <= 0) return;
+  auto* box = static_cast<ModelBox*>(lua_touserdata(L, model_idx));
+  render::SequenceOptions so;
+  so.folder = s.out_dir / (s.models_created <= 1 ? std::string("frames") : msg("frames_", s.models_created));
+  so.every_steps = s.frames_every;
+  so.frame.field = render::parse_field(s.frames_field);
+  so.frame.width = s.frames_width;
+  so.frame.height = s.frames_height;
+  so.frame.validate();
+  so.on_error = render::OnError::Continue;  // a command-line convenience never stops the run
+  render_hook(*box->model).sequences.push_back(std::make_unique<render::FrameSequence>(std::move(so)));
+}
+
+}  // namespace dda::script
+
+#else  // no renderer in this build
+
+namespace dda::script {
+void register_render(lua_State*) {}
+void register_render_functions(lua_State*) {}
+void attach_session_frames(lua_State*, int) {}
+}  // namespace dda::script
+
+#endif

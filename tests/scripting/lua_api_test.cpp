@@ -1,0 +1,471 @@
+// The dda Lua module in-process: selections, loads and histories, monitors,
+// stepping calls and callbacks, handle validity, and errors raised safely.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "lua_support.hpp"
+#include "scripting.hpp"
+#include "script_helpers.hpp"
+
+using namespace dda::script;
+
+namespace {
+
+class LuaApi : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    out_ = std::make_unique<dda::test::TempDir>(::testing::UnitTest::GetInstance()->current_test_info()->name());
+    Session s;
+    s.out_dir = out_->path;
+    s.params["answer"] = "42";
+    L = new_state(std::move(s));
+    ASSERT_NE(L, nullptr);
+  }
+  void TearDown() override { lua_close(L); }
+
+  // Runs code; fails the test with the message on error.
+  void run(const std::string& code) {
+    std::string error;
+    ASSERT_TRUE(run_string(L, code, "test", error)) << error;
+  }
+  // Runs code expecting an error; returns the message.
+  std::string error_of(const std::string& code) {
+    std::string error;
+    EXPECT_FALSE(run_string(L, code, "test", error)) << "no error from:\n" << code;
+    return error;
+  }
+  double number(const char* global) {
+    lua_getglobal(L, global);
+    const double v = lua_tonumber(L, -1);
+    lua_pop(L, 1);
+    return v;
+  }
+  std::string string(const char* global) {
+    lua_getglobal(L, global);
+    const std::string v = lua_tostring(L, -1) ? lua_tostring(L, -1) : "(nil)";
+    lua_pop(L, 1);
+    return v;
+  }
+
+  lua_State* L = nullptr;
+  std::unique_ptr<dda::test::TempDir> out_;
+};
+
+// A 2 m x 1 m domain cut into 4 x 2 blocks of 0.5 m.
+const char* kGrid =
+    "m = dda.model{ plane = 'stress', g1 = 1e-4 }\n"
+    "rock = m:rock{ density = 2000, E = 1e9, nu = 0.25 }\n"
+    "joint = m:joint{ friction = 30 }\n"
+    "m:domain{ box = {0, 0, 2, 1}, rock = rock }\n"
+    "m:joint_set{ dip = 0, spacing = 0.5, joint = joint }\n"
+    "m:joint_set{ dip = 90, spacing = 0.5, joint = joint }\n"
+    "blocks = m:generate()\n";
+
+TEST_F(LuaApi, GenerationAndSelections) {
+  run(kGrid);
+  run("n = #blocks\n"
+      "area = blocks:area()\n"
+      "domain_edges = #m:edges{ boundary = 'domain' }\n"
+      "left = m:edges{ on_segment = {0, 0, 0, 1} }\n"
+      "n_left = #left\n"
+      "left_len = left:length()\n"
+      "left_blocks = #left:blocks()\n"
+      "in_box = #m:blocks{ in_box = {0, 0, 1, 1} }\n"
+      "b = m:block_at(1.25, 0.75)\n"
+      "cx, cy = b:centroid()\n"
+      "none = m:block_at(5, 5)\n"
+      "joint_edges = #m:edges{ joint = joint }\n"
+      "first = left[1]\n"
+      "kind = first.kind\n");
+  EXPECT_EQ(number("n"), 8);
+  EXPECT_NEAR(number("area"), 2.0, 1e-12);
+  EXPECT_EQ(number("domain_edges"), 12);  // 4 + 2 + 4 + 2 block edges on the outline
+  EXPECT_EQ(number("n_left"), 2);
+  EXPECT_NEAR(number("left_len"), 1.0, 1e-12);
+  EXPECT_EQ(number("left_blocks"), 2);
+  EXPECT_EQ(number("in_box"), 4);
+  EXPECT_NEAR(number("cx"), 1.25, 1e-12);
+  EXPECT_NEAR(number("cy"), 0.75, 1e-12);
+  EXPECT_EQ(string("none"), "(nil)");
+  EXPECT_EQ(number("joint_edges"), 8 * 4 - 12);  // every block edge not on the outline
+  EXPECT_EQ(string("kind"), "domain");
+}
+
+TEST_F(LuaApi, HolesAndRegions) {
+  run("m = dda.model{}\n"
+      "r1 = m:rock{ density = 2000, E = 1e9, nu = 0.2 }\n"
+      "r2 = m:rock{ density = 3000, E = 2e9, nu = 0.2 }\n"
+      "m:domain{ box = {-5, -5, 5, 5}, rock = r1 }\n"
+      "h = m:hole{ box = {-1, -1, 1, 1} }\n"
+      "m:region{ box = {0, -5, 5, 5}, rock = r2 }\n"
+      "m:joint_set{ dip = 0, spacing = 2, origin = {0, 0} }\n"
+      "m:joint_set{ dip = 90, spacing = 2, origin = {0, 0} }\n"
+      "blocks = m:generate()\n"
+      "area = blocks:area()\n"
+      "wall = h:edges():length()\n"
+      "right = #m:blocks{ rock = r2 }\n"
+      "left = #m:blocks{ rock = r1 }\n"
+      "hole_no = h:number()\n"
+      "by_number = #m:edges{ hole = 1 }\n"
+      "by_handle = #m:edges{ hole = h }\n"
+      "total = #blocks\n");
+  EXPECT_NEAR(number("area"), 100 - 4, 1e-9);
+  EXPECT_NEAR(number("wall"), 8, 1e-12);
+  EXPECT_EQ(number("hole_no"), 1);
+  EXPECT_EQ(number("by_number"), number("by_handle"));
+  EXPECT_GT(number("right"), 0);
+  EXPECT_GT(number("left"), 0);
+  EXPECT_EQ(number("right") + number("left"), number("total"));
+}
+
+// Histories: a table is interpolated linearly and held outside its range; a
+// function is evaluated once per step, before the step, at t + dt.
+TEST_F(LuaApi, HistoriesAreEvaluatedOncePerStep) {
+  run("m = dda.model{ g1 = 0.01, g2 = 0.5 }\n"
+      "rock = m:rock{ density = 1000, E = 1e9, nu = 0.25 }\n"
+      "b = m:add_block{ {0, 0}, {1, 0}, {1, 1}, {0, 1} }\n"
+      "calls, times = 0, {}\n"
+      "load = m:point_load{ at = {0.5, 0.5}, fx = function(t) calls = calls + 1; times[#times + 1] = t; return 10 * t end,\n"
+      "                     fy = {{0, 0}, {0.05, -5}} }\n"
+      "calls_before = calls\n"
+      "m:step(10)\n"
+      "fx, fy = load:force()\n"
+      "t = m:time()\n"
+      "last_t = times[#times]\n");
+  EXPECT_EQ(number("calls") - number("calls_before"), 10);
+  EXPECT_NEAR(number("t"), 0.1, 1e-12);
+  EXPECT_NEAR(number("last_t"), 0.1, 1e-12);  // the last step's end time
+  EXPECT_NEAR(number("fx"), 1.0, 1e-12);
+  EXPECT_NEAR(number("fy"), -5, 1e-12);  // held after the table ends
+}
+
+TEST_F(LuaApi, TableHistoryInterpolates) {
+  run("m = dda.model{ g1 = 0.01, g2 = 0.5 }\n"
+      "rock = m:rock{ density = 1000, E = 1e9, nu = 0.25 }\n"
+      "b = m:add_block{ {0, 0}, {1, 0}, {1, 1}, {0, 1} }\n"
+      "load = m:point_load{ at = {0.5, 0.5}, fx = {{0, 0}, {0.1, 10}, {0.1, 20}, {0.2, 0}} }\n"
+      "m:step(3)\n"
+      "a = load:force()\n"
+      "m:step(9)\n"
+      "b2 = load:force()\n"
+      "m:step(3)\n"
+      "c = load:force()\n");
+  EXPECT_NEAR(number("a"), 3, 1e-9);    // t = 0.03 on the ramp 0 → 10 over 0.1 s
+  EXPECT_NEAR(number("b2"), 16, 1e-9);  // t = 0.12: after the jump to 20, ramping down to 0 at 0.2
+  EXPECT_NEAR(number("c"), 10, 1e-9);   // t = 0.15
+}
+
+// Pressure on an edge set: point loads at the edge ends, half the resultant
+// each, pushing into the block; a 1 m edge under p gives a total force p.
+TEST_F(LuaApi, PressurePushesIntoTheBlock) {
+  run("m = dda.model{ g1 = 1e-3, g2 = 0.5 }\n"
+      "rock = m:rock{ density = 1000, E = 1e9, nu = 0.25 }\n"
+      "b = m:add_block{ {0, 0}, {1, 0}, {1, 1}, {0, 1} }\n"
+      "left = m:edges{ on_segment = {0, 0, 0, 1} }\n"
+      "p = left:pressure(1000)\n"
+      "m:step(10)\n"
+      "vx = b:velocity()\n"
+      "t = m:time()\n"
+      "pv = p:value()\n");
+  // Rigid push: a = p·l / m = 1000 / 1000 = 1 m/s^2 to the right.
+  EXPECT_NEAR(number("pv"), 1000, 0);
+  EXPECT_NEAR(number("vx") / number("t"), 1.0, 1e-3);
+}
+
+TEST_F(LuaApi, MonitorsRecordEveryNSteps) {
+  run("m = dda.model{ gravity = {0, -10}, g1 = 0.01, g2 = 0.5 }\n"
+      "rock = m:rock{ density = 1000, E = 1e9, nu = 0.25 }\n"
+      "b = m:add_block{ {0, 0}, {1, 0}, {1, 1}, {0, 1} }\n"
+      "mon = m:monitor{ name = 'every3', at = {0.5, 0.5}, fields = {'vy', 'uy', 'y'}, every = 3 }\n"
+      "m:step(10)\n"
+      "rows = mon:count()\n"
+      "steps = mon:steps()\n"
+      "s2 = steps[2]\n"
+      "vmin, tmin = mon:min('vy')\n"
+      "last = mon:row(-1)\n"
+      "last_step = last.step\n"
+      "y_now = mon:value('y')\n"
+      "file = mon:file()\n");
+  EXPECT_EQ(number("rows"), 4);  // steps 0, 3, 6, 9
+  EXPECT_EQ(number("s2"), 3);
+  EXPECT_NEAR(number("vmin"), -0.9, 1e-12);
+  EXPECT_NEAR(number("tmin"), 0.09, 1e-12);
+  EXPECT_EQ(number("last_step"), 9);
+  EXPECT_NEAR(number("y_now"), 0.5 - 0.5 * 10 * 0.1 * 0.1, 1e-12);
+  const auto csv = dda::test::read_csv(string("file"));
+  EXPECT_TRUE(csv.complete);
+  EXPECT_EQ(csv.header, (std::vector<std::string>{"step", "time", "vy", "uy", "y"}));
+  EXPECT_EQ(csv.rows.size(), 4u);
+}
+
+TEST_F(LuaApi, RunCallbackEveryNAndStop) {
+  run("m = dda.model{ gravity = {0, -10}, g1 = 0.01, g2 = 0.5 }\n"
+      "rock = m:rock{ density = 1000, E = 1e9, nu = 0.25 }\n"
+      "m:add_block{ {0, 0}, {1, 0}, {1, 1}, {0, 1} }\n"
+      "seen = {}\n"
+      "m:run{ steps = 20, every = 5, callback = function(model) seen[#seen + 1] = model:steps() end }\n"
+      "n_seen, s3 = #seen, seen[3]\n"
+      "m:run{ time = 1, callback = function(model) return model:steps() < 25 end }\n"
+      "stopped_at = m:steps()\n"
+      "t, s = m:run_until(0.4)\n");
+  EXPECT_EQ(number("n_seen"), 4);
+  EXPECT_EQ(number("s3"), 15);
+  EXPECT_EQ(number("stopped_at"), 25);
+  EXPECT_NEAR(number("t"), 0.4, 1e-9);
+  EXPECT_EQ(number("s"), 40);
+}
+
+TEST_F(LuaApi, ContactsAndStatistics) {
+  run("m = dda.model{ gravity = {0, -9.81}, g1 = 1e-3, g2 = 0.01 }\n"
+      "rock = m:rock{ density = 2600, E = 5e9, nu = 0.25 }\n"
+      "base = m:add_block{ {0, -1}, {2, -1}, {2, 0}, {0, 0} }\n"
+      "base:fix()\n"
+      "top = m:add_block{ {0.5, 1e-6}, {1.5, 1e-6}, {1.5, 1}, {0.5, 1} }\n"
+      "m:step(20)\n"
+      "cs = m:contacts()\n"
+      "n = #cs\n"
+      "state = cs[1].state\n"
+      "summary = m:contact_summary()\n"
+      "closed = summary.sliding + summary.locked\n"
+      "stats = m:stats()\n"
+      "dt = stats.dt\n"
+      "totals = m:totals()\n"
+      "total_steps = totals.steps\n"
+      "of_top = #m:contacts{ block = top }\n"
+      "hash = m:hash()\n");
+  EXPECT_GT(number("n"), 0);
+  EXPECT_GT(number("closed"), 0);
+  EXPECT_NEAR(number("dt"), 1e-3, 1e-12);
+  EXPECT_EQ(number("total_steps"), 20);
+  EXPECT_EQ(number("of_top"), number("n"));
+  EXPECT_EQ(string("hash").size(), 16u);
+}
+
+TEST_F(LuaApi, MaterialsAreReadableAndWritable) {
+  run("m = dda.model{}\n"
+      "rock = m:rock{ density = 2000, E = 50e9, nu = 0.25 }\n"
+      "rock.E = 60e9\n"
+      "E = rock.E\n"
+      "j = m:default_joint()\n"
+      "phi = j.friction\n"
+      "j.friction = 35\n"
+      "phi2 = j.friction\n"
+      "same = (j == m:default_joint())\n");
+  EXPECT_EQ(number("E"), 60e9);
+  EXPECT_EQ(number("phi"), 30);
+  EXPECT_EQ(number("phi2"), 35);
+  lua_getglobal(L, "same");
+  EXPECT_TRUE(lua_toboolean(L, -1));
+  lua_pop(L, 1);
+  EXPECT_NE(error_of("rock.nu = 0.7").find("Poisson's ratio must lie in [0, 0.5)"), std::string::npos);
+  EXPECT_NE(error_of("rock.colour = 1").find("rock: unknown field 'colour'"), std::string::npos);
+}
+
+// FHI: direction × magnitude table, handed to the engine.
+TEST_F(LuaApi, ForceHistoryAlongADirection) {
+  run("m = dda.model{ g1 = 0.01, g2 = 0.5 }\n"
+      "rock = m:rock{ density = 1000, E = 1e9, nu = 0.25 }\n"
+      "b = m:add_block{ {0, 0}, {1, 0}, {1, 1}, {0, 1} }\n"
+      "load = m:point_load{ at = {0.5, 0.5}, direction = {2, 0}, magnitude = {{0, 0}, {1, 1000}} }\n"
+      "m:step(50)\n"
+      "fx, fy = load:force()\n"
+      "vx = b:velocity()\n"
+      "load:set(0, 0)\n"
+      "m:step(10)\n"
+      "vx2 = b:velocity()\n"
+      "gx = load:force()\n");
+  EXPECT_NEAR(number("fx"), 500, 1e-9);  // 1000 N/s × 0.5 s, along +x
+  EXPECT_NEAR(number("fy"), 0, 1e-12);
+  // a = f / m = t (m/s²), evaluated by the engine at each step's end:
+  // Σ (k Δt) Δt for k = 1..50 = 0.01² × 1275.
+  EXPECT_NEAR(number("vx"), 1e-4 * 1275, 1e-9);
+  EXPECT_NEAR(number("vx2"), number("vx"), 1e-9);  // switched off: no more acceleration
+  EXPECT_EQ(number("gx"), 0);
+}
+
+// SBC: in a static analysis (gg = 0), springs on the left edge carry the
+// pressure pushing on the right edge.
+TEST_F(LuaApi, SpringBoundaryCarriesTheLoad) {
+  run("m = dda.model{ g1 = 0.01, g2 = 0.5, gg = 0 }\n"
+      "rock = m:rock{ density = 1000, E = 1e9, nu = 0.25 }\n"
+      "b = m:add_block{ {0, 0}, {1, 0}, {1, 1}, {0, 1} }\n"
+      "springs = m:edges{ on_segment = {0, 0, 0, 1} }:spring_boundary{ p = 1e6 }\n"
+      "m:edges{ on_segment = {1, 0, 1, 1} }:pressure(1000)\n"
+      "m:step(160)\n"
+      "fx, fy = springs:force()\n"
+      "n = #springs:point_forces()\n");
+  EXPECT_NEAR(number("fx"), 1000, 1);  // static iterations converge on the load
+  EXPECT_NEAR(number("fy"), 0, 1e-6);
+  EXPECT_EQ(number("n"), 2);
+}
+
+TEST_F(LuaApi, ViscousBoundaryOpposesMotion) {
+  run("m = dda.model{ g1 = 1e-4, g2 = 0.5 }\n"
+      "rock = m:rock{ density = 2000, E = 50e9, nu = 0.25 }\n"
+      "b = m:add_block{ {0, 0}, {1, 0}, {1, 1}, {0, 1} }\n"
+      "b:set_velocity(-1, 0)\n"
+      "vbc = m:edges{ on_segment = {0, 0, 0, 1} }:viscous_boundary()\n"
+      "m:step(1)\n"
+      "fx = vbc:force()\n");
+  EXPECT_GT(number("fx"), 0);
+}
+
+// DHI: a velocity history integrated by the engine moves the edge's points.
+TEST_F(LuaApi, TargetFollowsAVelocityHistory) {
+  run("m = dda.model{ g1 = 1e-3, g2 = 0.5 }\n"
+      "rock = m:rock{ density = 1000, E = 1e9, nu = 0.25 }\n"
+      "b = m:add_block{ {0, 0}, {1, 0}, {1, 1}, {0, 1} }\n"
+      "push = m:edges{ on_segment = {0, 0, 0, 1} }:target{ velocity = 0.1 }\n"
+      "m:step(100)\n"
+      "ux, uy = push:displacement()\n"
+      "n = push:count()\n"
+      "t = m:time()\n"
+      "fixed = m:target{ at = {0.5, 0.5}, displacement = {0, 0} }\n");
+  EXPECT_EQ(number("n"), 2);
+  EXPECT_NEAR(number("ux"), 0.1 * number("t"), 0.01 * 0.1 * number("t"));  // along the inward normal: +x
+  EXPECT_NEAR(number("uy"), 0, 1e-6);
+  EXPECT_NE(error_of("m:target{ at = {0.5, 0.5}, displacement = 0.1 }").find("needs a direction"), std::string::npos);
+  EXPECT_NE(error_of("m:target{ at = {0.5, 0.5}, direction = {1, 0}, velocity = function(t) return 1 end }")
+                .find("option 'velocity' must be a number or a table"),
+            std::string::npos);
+}
+
+// Every error names the chunk and line, the call and the argument.
+TEST_F(LuaApi, ErrorsNameTheCallAndLine) {
+  run(kGrid);
+  EXPECT_NE(error_of("\nm:joint_set{ dip = 0, spacing = 1 }").find("test:2: m:joint_set: blocks were already generated"),
+            std::string::npos);
+  EXPECT_NE(error_of("m:monitor{ at = {0.5, 0.5}, fields = {'sxx'}, evry = 2 }")
+                .find("test:1: m:monitor: unknown option 'evry' (did you mean 'every'?)"),
+            std::string::npos);
+  EXPECT_NE(error_of("m:monitor{ at = {0.5, 0.5}, fields = {'vz'} }").find("test:1: m:monitor: unknown field 'vz'"),
+            std::string::npos);
+  EXPECT_NE(error_of("m:block_at('a', 1)").find("test:1: m:block_at: argument 1 (x) must be a number, got string"),
+            std::string::npos);
+  EXPECT_NE(error_of("m:step(-1)").find("test:1: m:step: argument 1 (number of steps) must be zero or positive"),
+            std::string::npos);
+  EXPECT_NE(error_of("m:run{ time = 1, steps = 2 }").find("test:1: m:run: give exactly one of 'time', 'steps'"),
+            std::string::npos);
+  EXPECT_NE(error_of("m:run{ steps = 2, every = 0, callback = print }").find("option 'every' must be at least 1"),
+            std::string::npos);
+  EXPECT_NE(error_of("m:edges{ boundary = 'outer' }").find("option 'boundary' must be \"domain\", \"hole\" or \"any\""),
+            std::string::npos);
+  EXPECT_NE(error_of("blocks[1]:set_velocity(1)").find("test:1: b:set_velocity: argument 2 (vy) must be a number"),
+            std::string::npos);
+  EXPECT_NE(error_of("m:edges{ on_segment = {0, 0, 1, 1} }:fix()").find("edges:fix: the edge set is empty"),
+            std::string::npos);
+  EXPECT_NE(error_of("m:edges{ on_segment = {0, 0, 0, 1} }:pressure('x')")
+                .find("edges:pressure: argument 1 (pressure) must be a number, a table of {t, value} pairs or a function of t"),
+            std::string::npos);
+}
+
+// Load history functions must not change or step the model.
+TEST_F(LuaApi, HistoryFunctionsCannotStepTheModel) {
+  run("m = dda.model{ g1 = 0.01, g2 = 0.5 }\n"
+      "rock = m:rock{ density = 1000, E = 1e9, nu = 0.25 }\n"
+      "m:add_block{ {0, 0}, {1, 0}, {1, 1}, {0, 1} }\n"
+      "armed = false\n"
+      "m:point_load{ at = {0.5, 0.5}, fx = function(t) if armed then m:step(1) end return 0 end }\n"
+      "armed = true\n");
+  const std::string e = error_of("m:step(1)");
+  EXPECT_NE(e.find("cannot be changed or stepped from inside a load history function"), std::string::npos) << e;
+}
+
+TEST_F(LuaApi, ErrorObjectsFromCallbacksPassThrough) {
+  run("m = dda.model{ g1 = 0.01, g2 = 0.5 }\n"
+      "rock = m:rock{ density = 1000, E = 1e9, nu = 0.25 }\n"
+      "m:add_block{ {0, 0}, {1, 0}, {1, 1}, {0, 1} }\n"
+      "ok, err = pcall(m.run, m, { steps = 5, callback = function() error({ code = 7 }) end })\n"
+      "code = type(err) == 'table' and err.code or -1\n"
+      "steps_after = m:steps()\n");
+  EXPECT_EQ(number("code"), 7);
+  EXPECT_EQ(number("steps_after"), 1);
+}
+
+TEST_F(LuaApi, ParamReadsTheSession) {
+  run("a = dda.param('answer', 0)\n"
+      "b = dda.param('missing', 'dflt')\n");
+  EXPECT_EQ(number("a"), 42);
+  EXPECT_EQ(string("b"), "dflt");
+}
+
+int throws_engine_error(lua_State*) { throw dda::Error("engine says no"); }
+
+// A C++ exception thrown behind a Lua C function becomes a Lua error with
+// the caller's position and the function's name.
+TEST(LuaSupport, EngineErrorBecomesLuaErrorWithPosition) {
+  lua_State* L = luaL_newstate();
+  lua_pushcfunction(L, guarded<throws_engine_error>);
+  lua_setglobal(L, "boom");
+  const std::string code = "\n\nboom()";
+  ASSERT_EQ(luaL_loadbufferx(L, code.data(), code.size(), "=chunk", "t"), LUA_OK);
+  ASSERT_NE(lua_pcall(L, 0, 0, 0), LUA_OK);
+  EXPECT_STREQ(lua_tostring(L, -1), "chunk:3: boom: engine says no");
+  lua_close(L);
+}
+
+}  // namespace
+
+// ---- rendering (when the renderer is built) ------------------------------------------
+
+#ifdef DDA_HAVE_RENDER
+namespace {
+
+const char* kTwoBlocks =
+    "m = dda.model{ gravity = {0, -9.81}, g1 = 1e-3, g2 = 0.01 }\n"
+    "rock = m:rock{ density = 2600, E = 5e9, nu = 0.25 }\n"
+    "base = m:add_block{ {0, -1}, {2, -1}, {2, 0}, {0, 0} }\n"
+    "base:fix()\n"
+    "top = m:add_block{ {0.5, 1e-6}, {1.5, 1e-6}, {1.5, 1}, {0.5, 1} }\n"
+    "mon = m:monitor{ name = 'top', at = {1, 0.5}, fields = {'syy', 'vy'} }\n";
+
+TEST_F(LuaApi, FramesEveryNStepsAndPlots) {
+  run(kTwoBlocks);
+  run("frames = m:frames{ folder = 'frames', every = 10, field = 'sigma_yy', width = 160, height = 120 }\n"
+      "m:step(30)\n"
+      "frames:flush()\n"
+      "count = frames:count()\n"
+      "last = frames:path()\n"
+      "one = m:frame{ file = 'one.png', field = 'velocity', width = 100, height = 80 }\n"
+      "plot = mon:plot{ field = 'syy', file = 'plots/syy.png', width = 300, height = 200 }\n"
+      "both = dda.plot{ file = 'both.png', width = 300, height = 200,\n"
+      "                 series = { {monitor = mon, field = 'vy'}, {name = 'line', x = {0, 1}, y = {0, 1}} } }\n");
+  EXPECT_EQ(number("count"), 4);  // steps 0, 10, 20, 30
+  for (const char* f : {"last", "one", "plot", "both"}) EXPECT_TRUE(std::filesystem::exists(string(f))) << string(f);
+  EXPECT_TRUE(std::filesystem::exists(out_->path / "frames/sigma_yy_00000.png"));
+  EXPECT_TRUE(std::filesystem::exists(out_->path / "frames/sigma_yy_00003.png"));
+}
+
+TEST_F(LuaApi, RenderOptionErrors) {
+  run(kTwoBlocks);
+  EXPECT_NE(error_of("m:frame{ file = 'x.png', feild = 'sigma_xx' }").find("m:frame: unknown option 'feild' (did you mean 'field'?)"),
+            std::string::npos);
+  EXPECT_NE(error_of("m:frame{ file = 'x.png', field = 'sigma_zz' }").find("test:1: m:frame:"), std::string::npos);
+  EXPECT_NE(error_of("m:frames{ every = 10, on_error = 'ignore' }").find("option 'on_error' must be \"stop\" or \"continue\""),
+            std::string::npos);
+  EXPECT_NE(error_of("mon:plot{ field = 'sxx', file = 'p.png' }").find("monitor 'top' does not record 'sxx'"),
+            std::string::npos);
+}
+
+// Without OpenGL, a sequence that must stop raises at the step; one that may
+// continue turns itself off and the run goes on.
+TEST_F(LuaApi, RenderingFailureStopsOrContinuesAsChosen) {
+  run(kTwoBlocks);
+  setenv("DDA_RENDER_DISABLE_OSMESA", "1", 1);
+  run("quiet = m:frames{ folder = 'a', every = 1, on_error = 'continue' }\n"
+      "m:step(5)\n"
+      "quiet:flush()\n"
+      "m:step(1)\n");  // the run goes on
+  run("loud = m:frames{ folder = 'b', every = 1, on_error = 'stop' }\n");
+  const std::string stop = error_of("m:step(5)\nloud:flush()\n");
+  unsetenv("DDA_RENDER_DISABLE_OSMESA");
+  EXPECT_NE(stop.find("test:"), std::string::npos) << stop;
+  run("active = quiet:active()\n");
+  lua_getglobal(L, "active");
+  EXPECT_FALSE(lua_toboolean(L, -1));
+  lua_pop(L, 1);
+}
+
+}  // namespace
+#endif
