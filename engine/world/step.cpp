@@ -71,12 +71,15 @@ void World::prepare_first_step() {
 
   // Blocks must not overlap at the start: a crossing of two edges, or a
   // vertex inside another block, is a modelling error.
+  // Edges that merely touch, computed with round-off (cos/sin), are not
+  // crossings: a crossing must go deeper than 1e-9 of the blocks' size.
   const BlockPolygons polys{vertex_start_, vertices_};
   for (const auto& [a, b] : find_candidate_pairs(polys, 0.0)) {
     const auto pa = polys.of(a), pb = polys.of(b);
+    const double tol = 1e-9 * std::sqrt(std::min(area_[a], area_[b]));
     for (std::size_t i = 0; i < pa.size(); ++i)
       for (std::size_t j = 0; j < pb.size(); ++j)
-        if (segments_cross_properly(pa[i], pa[(i + 1) % pa.size()], pb[j], pb[(j + 1) % pb.size()]))
+        if (segments_cross_clearly(pa[i], pa[(i + 1) % pa.size()], pb[j], pb[(j + 1) % pb.size()], tol))
           throw Error(msg("blocks ", a, " and ", b, " overlap at the start (edge ", i + 1, " of block ", a,
                           " crosses edge ", j + 1, " of block ", b, ")"));
     auto vertex_inside = [&](std::span<const Vec2> p, std::span<const Vec2> q, int pb_id, int qb_id) {

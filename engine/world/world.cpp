@@ -118,6 +118,8 @@ void World::set_point_load(int id, const Vec2& force) {
   if (id < 0 || id >= static_cast<int>(point_loads_.size())) throw Error(msg("no point load ", id));
   if (!force.allFinite()) throw Error(msg("point load ", id, ": force is not finite"));
   point_loads_[id].force = force;
+  // A fixed force replaces any force history the load had.
+  std::erase_if(point_load_histories_, [&](const PointLoadHistory& h) { return h.load == id; });
 }
 
 int World::add_fixed_point(BlockId b, const Vec2& point) {

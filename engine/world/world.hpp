@@ -104,7 +104,7 @@ class World {
 
   // A point load fixed to the material point `point` of block b.
   int add_point_load(BlockId b, const Vec2& point, const Vec2& force);
-  void set_point_load(int id, const Vec2& force);
+  void set_point_load(int id, const Vec2& force);  // also drops a force history (below)
   // A fixed point: a stiff spring (fixed_point_factor × g0) that pulls the
   // material point back to where it started, residual included.
   int add_fixed_point(BlockId b, const Vec2& point);

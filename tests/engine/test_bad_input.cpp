@@ -72,6 +72,12 @@ TEST(BadInput, OverlappingBlocksAtTheStartAreNamed) {
   touching.add_block(test::rectangle(0, 0, 1, 1), touching.add_rock_material(test::granite()));
   touching.add_block(test::rectangle(1, 0, 1, 1), 0);
   EXPECT_NO_THROW(touching.step());
+
+  // Also when the shared edge is computed with cos/sin round-off.
+  World rotated;
+  const int rock2 = rotated.add_rock_material(test::granite());
+  for (int i = 0; i < 5; ++i) rotated.add_block(test::rotated(test::rectangle(i * 0.3, 0, 0.3, 0.2), deg_to_rad(33)), rock2);
+  EXPECT_NO_THROW(rotated.step());
 }
 
 TEST(BadInput, DivergingStepNamesTheBlock) {
