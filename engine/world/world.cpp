@@ -79,6 +79,7 @@ BlockId World::add_block(std::vector<Vec2> vertices, int rock_material, std::vec
   }
   const PolygonMoments m = polygon_moments(vertices);
   vertices_.insert(vertices_.end(), vertices.begin(), vertices.end());
+  initial_vertices_.insert(initial_vertices_.end(), vertices.begin(), vertices.end());
   edge_joint_.insert(edge_joint_.end(), edge_joints.begin(), edge_joints.end());
   vertex_start_.push_back(static_cast<int>(vertices_.size()));
   centroid_.push_back(m.centroid);
@@ -151,6 +152,11 @@ BlockId World::tracked_block(int id) const {
 std::span<const Vec2> World::block_vertices(BlockId b) const {
   check(b);
   return std::span<const Vec2>(vertices_).subspan(vertex_start_[b], vertex_start_[b + 1] - vertex_start_[b]);
+}
+
+std::span<const Vec2> World::block_initial_vertices(BlockId b) const {
+  check(b);
+  return std::span<const Vec2>(initial_vertices_).subspan(vertex_start_[b], vertex_start_[b + 1] - vertex_start_[b]);
 }
 
 int World::block_edge_joint(BlockId b, int edge) const {

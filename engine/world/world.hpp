@@ -159,6 +159,7 @@ class World {
 
   std::size_t block_count() const { return vertex_start_.empty() ? 0 : vertex_start_.size() - 1; }
   std::span<const Vec2> block_vertices(BlockId b) const;
+  std::span<const Vec2> block_initial_vertices(BlockId b) const;  // as added (counter-clockwise)
   int block_edge_joint(BlockId b, int edge) const;
   Vec2 block_centroid(BlockId b) const { return centroid_[check(b)]; }
   double block_area(BlockId b) const { return area_[check(b)]; }
@@ -208,6 +209,7 @@ class World {
   // Hot per-block state (solver arrays, indexed by block id).
   std::vector<int> vertex_start_;  // block b owns vertices_[vertex_start_[b] .. vertex_start_[b+1])
   std::vector<Vec2> vertices_;
+  std::vector<Vec2> initial_vertices_;  // parallel to vertices_: where each vertex started (cold)
   std::vector<int> edge_joint_;    // parallel to vertices_: joint of edge k → k+1
   std::vector<Vec2> centroid_, initial_centroid_;
   std::vector<double> area_, sxx_, syy_, sxy_, mass_;

@@ -19,7 +19,8 @@ void WorldSnapshot::extend_initial(const World& world) {
   if (initial_offsets_.empty()) initial_offsets_.push_back(0);
   const std::size_t n = world.block_count();
   for (std::size_t b = initial_offsets_.size() - 1; b < n; ++b) {
-    const auto v = world.block_vertices(static_cast<BlockId>(b));
+    // Where the block started, whenever the snapshot is first taken.
+    const auto v = world.block_initial_vertices(static_cast<BlockId>(b));
     initial_vertices_.insert(initial_vertices_.end(), v.begin(), v.end());
     initial_offsets_.push_back(static_cast<std::int32_t>(initial_vertices_.size()));
   }

@@ -30,6 +30,18 @@ dda::World falling_world() {
 
 }  // namespace
 
+TEST(WorldScene, SnapshotTakenLateStillKnowsTheStart) {
+  // Magnified deformation needs the starting outline, even when the first
+  // snapshot is taken after the run has begun.
+  dda::World w = falling_world();
+  for (int i = 0; i < 5; ++i) w.step();
+  WorldSnapshot snap;
+  const Scene s = snap.take(w);
+  EXPECT_LT(s.vertices[0].y(), 0.0);
+  EXPECT_EQ(s.initial_vertices[0], Vec2(0, 0));
+  EXPECT_EQ(s.initial_vertices[s.offsets[1]], Vec2(3, 0));
+}
+
 TEST(WorldScene, SnapshotCopiesTheWorld) {
   dda::World w = falling_world();
   const int tp = w.add_tracked_point(0, {0.5, 0.5});
