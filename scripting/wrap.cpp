@@ -272,16 +272,20 @@ void push_point(lua_State* L, const Vec2& p) {
   lua_rawseti(L, -2, 2);
 }
 
+void set_number_field(lua_State* L, const char* key, double value) {
+  lua_pushnumber(L, value);
+  lua_setfield(L, -2, key);
+}
+
+void set_integer_field(lua_State* L, const char* key, long value) {
+  lua_pushinteger(L, value);
+  lua_setfield(L, -2, key);
+}
+
 void push_stats(lua_State* L, const StepStats& s) {
   lua_createtable(L, 0, 13);
-  auto num = [&](const char* k, double v) {
-    lua_pushnumber(L, v);
-    lua_setfield(L, -2, k);
-  };
-  auto integer = [&](const char* k, long v) {
-    lua_pushinteger(L, v);
-    lua_setfield(L, -2, k);
-  };
+  auto num = [&](const char* k, double v) { set_number_field(L, k, v); };
+  auto integer = [&](const char* k, long v) { set_integer_field(L, k, v); };
   num("dt", s.dt);
   integer("open_close_iterations", s.open_close_iterations);
   integer("cg_iterations", s.cg_iterations);

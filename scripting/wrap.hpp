@@ -110,6 +110,9 @@ void parse_controls(const Options& o, Controls& c);
 
 // Pushes a Lua table {x, y}.
 void push_point(lua_State* L, const Vec2& p);
+// t[key] = value for the table on top of the stack.
+void set_number_field(lua_State* L, const char* key, double value);
+void set_integer_field(lua_State* L, const char* key, long value);
 // Pushes a fresh table with a StepStats.
 void push_stats(lua_State* L, const StepStats& s);
 

@@ -88,14 +88,8 @@ void push_controls(lua_State* L, const Controls& c) {
   lua_createtable(L, 0, 16);
   lua_pushstring(L, c.plane == PlaneMode::Stress ? "stress" : "strain");
   lua_setfield(L, -2, "plane");
-  auto num = [&](const char* k, double v) {
-    lua_pushnumber(L, v);
-    lua_setfield(L, -2, k);
-  };
-  auto integer = [&](const char* k, long v) {
-    lua_pushinteger(L, v);
-    lua_setfield(L, -2, k);
-  };
+  auto num = [&](const char* k, double v) { set_number_field(L, k, v); };
+  auto integer = [&](const char* k, long v) { set_integer_field(L, k, v); };
   num("g0", c.g0);
   num("g1", c.g1);
   num("g2", c.g2);
