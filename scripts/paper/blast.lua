@@ -1,0 +1,307 @@
+-- blast.lua: the paper's Section 4 underground blast in a jointed rock mass
+-- (Figs. 14-18), one parametrised script.
+--
+-- Models:  the square jointed rock mass of blast_model.lua (120, 100 or 80 m;
+--          joint sets at 45 and 135 deg, 2 m spacing; rock 2650 kg/m^3,
+--          E = 74 GPa, nu = 0.2, plane strain; joints phi = 25 deg, c = 2 MPa,
+--          sigma_t = 0; g0 = 100e9 N/m, g1 = 1e-5 s, gg = 1, g2 = 0.005) with
+--          the 8 m x 4 m blasting chamber.
+--          Where the chamber is, and why: centred at the origin, which is the
+--          detonation centre (chamber spans x = -4..4, y = -2..2). The paper's
+--          2-D model is a square symmetric about the detonation centre, its
+--          monitors are given relative to that centre (MP1 8 m above it, MP2
+--          6 m left and 5 m above, MP3 above it near the upper boundary), and
+--          the model-size study (120/100/80 m) only makes sense with the
+--          chamber in the middle, equally far from every boundary.
+--          Loads on the chamber wall (every edge of the hole):
+--            load=shi: triangular pressure, 0 -> 30.23 MPa at 0.5 ms -> 0 at
+--                      2.5 ms (paper's SHI), pushing into the rock;
+--            load=dhi: triangular particle velocity, 0 -> 2.03 m/s at 0.5 ms
+--                      -> 0 at 2.5 ms, normal to each wall into the rock
+--                      (mean normal at the corners); the engine integrates it
+--                      to a displacement (peak 2.54 mm) held afterwards.
+--          Outer boundary: boundary=fixed (fixed points), vbc (viscous,
+--          Eqs. 6-12) or sbc (springs p = E per unit length, Eq. 22).
+--          Monitors: MP1 (0, 8), MP2 (-6, 5), MP3 (0, size/2 - 1) and a line
+--          straight above the chamber at y = 4, 6, ..., size/2 - 2 (PPV
+--          attenuation, Fig. 18; R = y from the detonation centre).
+-- Run:     build/dda run scripts/paper/blast.lua [--set size=100|120|80]
+--            [--set load=dhi|shi] [--set boundary=fixed|vbc|sbc]
+--            [--set t_end=0.012] [--set frames=0.001] [--out out]
+--          One command per figure (several models in turn):
+--            --set figure=14a   DHI, Fixed, 12 ms, sizes 120/100/80
+--            --set figure=14b   100 m, Fixed, 12 ms, DHI vs SHI
+--            --set figure=15    100 m, DHI, 0.05 s, Fixed vs VBC vs SBC (Figs. 15-18)
+--          --set check=true: a short test run (default t_end = 3 ms) that
+--          raises an error unless the first arrival at MP1 matches the P-wave
+--          travel time and no contact penetrates beyond the g2 bound. Arrival:
+--          the first time |vy| at MP1 exceeds 1 % of its peak over the run; it
+--          must lie between the travel time (at the plane-strain C_P = 5570 m/s)
+--          from the roof (y = 2) to the lowest vertex of MP1's block (a
+--          first-order block moves as a whole) and the travel time to MP1 at
+--          the paper's C_P = 5284 m/s plus 0.25 ms (half the load's rise).
+--          Penetration: every contact, every 5 steps, against g2 x half height.
+--          --set contact_tolerance=X overrides the open-close hysteresis
+--          (fraction of half the model height; engine default 1e-9).
+-- Writes:  (under --out, <tag> = <load>_<boundary>_<size>)
+--          blast_<tag>_MP1.csv, _MP2.csv, _MP3.csv  step,time,vx,vy,sxx,syy,ux,uy
+--          blast_<tag>_line.csv   time and vy at each line monitor
+--          blast_<tag>_ppv.csv    R, R/Q^(1/3), PPV (max |vy|), Eq. 23 for the line
+--          blast_<tag>_vy_MP1.png y-velocity at MP1
+--          blast_<tag>_frames/    sigma_yy frames every `frames` s (when > 0)
+--          blast_runs.csv         one row per run appended: tag, blocks, steps,
+--                                 wall time, PPVs at MP1/MP2/MP3, step cuts
+--          with figure=...: fig<id>_*.png comparison plots.
+
+local dda = require "dda"
+local blast_model = require "blast_model"
+
+local Q = 606                                   -- kg TNT
+local function eq23(sd) return 1.8 * sd ^ -2.5 end
+
+local figure = tostring(dda.param("figure", ""))
+local check = dda.param("check", false)
+local P = {
+  size = dda.param("size", 100),
+  load = dda.param("load", "dhi"),
+  boundary = dda.param("boundary", "fixed"),
+  t_end = dda.param("t_end", check and 0.003 or 0.012),
+  frames = dda.param("frames", 0),              -- s between sigma_yy frames, 0 = none
+  line_step = dda.param("line_step", 2),        -- m between line monitors
+  contact_tolerance = dda.param("contact_tolerance", 0),  -- 0 = engine default (1e-9)
+}
+
+local function ppv(mon, field)
+  local v, t = mon:peak(field or "vy")
+  return math.abs(v), t
+end
+
+-- first time |series| exceeds frac of its largest magnitude over the run
+local function first_arrival(times, values, frac)
+  local peak = 0
+  for _, v in ipairs(values) do peak = math.max(peak, math.abs(v)) end
+  for i, v in ipairs(values) do
+    if math.abs(v) > frac * peak then return times[i], peak end
+  end
+  return nil, peak
+end
+
+local function run_case(cfg)
+  local tag = string.format("%s_%s_%g", cfg.load, cfg.boundary, cfg.size)
+  local M = blast_model.build{ size = cfg.size,
+                              controls = (cfg.contact_tolerance or 0) > 0 and { contact_tolerance = cfg.contact_tolerance } or nil }
+  local m, h = M.m, M.h
+  print(string.format("blast %s: %g m model, %d blocks, chamber wall %d edges (%.1f m), t_end = %g s",
+                      tag, cfg.size, #M.blocks, #M.wall, M.wall:length(), cfg.t_end))
+
+  -- loads on the chamber wall
+  local times = { {0, 0}, {0.5e-3, 1}, {2.5e-3, 0} }
+  local function scaled(a) local r = {} for i, p in ipairs(times) do r[i] = {p[1], a * p[2]} end return r end
+  if cfg.load == "shi" then
+    M.wall:pressure(scaled(30.23e6))
+  elseif cfg.load == "dhi" then
+    M.wall:target{ velocity = scaled(2.03) }
+  else
+    error("load must be dhi or shi, got " .. tostring(cfg.load))
+  end
+
+  -- outer boundary
+  if cfg.boundary == "fixed" then M.outer:fix()
+  elseif cfg.boundary == "vbc" then M.outer:viscous_boundary()
+  elseif cfg.boundary == "sbc" then M.outer:spring_boundary{ p = blast_model.rock.E, per_length = true }
+  else error("boundary must be fixed, vbc or sbc, got " .. tostring(cfg.boundary)) end
+
+  local fields = { "vx", "vy", "sxx", "syy", "ux", "uy" }
+  local mons = {}
+  for _, mp in ipairs{ {"MP1", 0, 8}, {"MP2", -6, 5}, {"MP3", 0, h - 1} } do
+    mons[mp[1]] = m:monitor{ at = {mp[2], mp[3]}, fields = fields, name = "blast_" .. tag .. "_" .. mp[1] }
+  end
+  local line = {}
+  local y = 4
+  while y <= h - 2 + 1e-9 do
+    line[#line + 1] = { y = y, mon = m:monitor{ at = {0, y}, fields = {"vy"}, csv = false } }
+    y = y + cfg.line_step
+  end
+
+  if cfg.frames and cfg.frames > 0 and dda.has_render then
+    m:frames{ folder = "blast_" .. tag .. "_frames", every_time = cfg.frames, field = "sigma_yy",
+              on_error = "continue", colormap = "coolwarm", monitors = false }
+  end
+
+  local bound = m:controls().g2 * m:half_height()
+  -- lowest point of MP1's block at the start: a first-order block moves as a
+  -- whole, so MP1 can feel the wave once it reaches that point
+  local mp1_ymin = math.huge
+  for _, v in ipairs(mons.MP1:block():vertices()) do mp1_ymin = math.min(mp1_ymin, v[2]) end
+  local max_pen, max_pen_t = 0, 0
+  local callback = nil
+  if cfg.check then
+    callback = function(model)
+      for _, c in ipairs(model:contacts{}) do
+        if c.penetration > max_pen then max_pen, max_pen_t = c.penetration, model:time() end
+      end
+    end
+  end
+  if callback then m:run{ time = cfg.t_end, every = 5, callback = callback } else m:run{ time = cfg.t_end } end
+
+  local tot = m:totals()
+  local res = { tag = tag, blocks = #M.blocks, steps = tot.steps, wall = tot.wall_seconds, cuts = tot.step_cuts,
+                oc = tot.open_close_iterations, mons = mons, line = line, size = cfg.size, load = cfg.load,
+                boundary = cfg.boundary }
+  for name, mon in pairs(mons) do res[name] = ppv(mon) end
+  res.t_peak_MP1 = select(2, ppv(mons.MP1))
+  res.times = mons.MP1:times()
+  res.vy = { MP1 = mons.MP1:series("vy"), MP2 = mons.MP2:series("vy"), MP3 = mons.MP3:series("vy") }
+  res.syy = { MP1 = mons.MP1:series("syy"), MP2 = mons.MP2:series("syy") }
+  res.uy_MP3 = mons.MP3:series("uy")
+  print(string.format("  %d steps, %.1f s wall (%.1f ms/step), %d step cuts, %d open-close iterations",
+                      tot.steps, tot.wall_seconds, 1e3 * tot.wall_seconds / tot.steps, tot.step_cuts, tot.open_close_iterations))
+  print(string.format("  PPV (max |vy|): MP1 %.4f m/s at %.3f ms, MP2 %.4f, MP3 %.4f; MP3 final uy %.4g m",
+                      res.MP1, 1e3 * res.t_peak_MP1, res.MP2, res.MP3, res.uy_MP3[#res.uy_MP3]))
+
+  -- line monitors: history and PPV table
+  local lt = line[1] and line[1].mon:times() or {}
+  local f = assert(io.open(dda.output("blast_" .. tag .. "_line.csv"), "w"))
+  local hdr = { "time" }
+  local series = {}
+  for i, l in ipairs(line) do hdr[#hdr + 1] = string.format("vy_y%g", l.y); series[i] = l.mon:series("vy") end
+  f:write(table.concat(hdr, ","), "\n")
+  for r = 1, #lt do
+    local row = { string.format("%.9g", lt[r]) }
+    for i = 1, #line do row[#row + 1] = string.format("%.6g", series[i][r]) end
+    f:write(table.concat(row, ","), "\n")
+  end
+  f:close()
+  f = assert(io.open(dda.output("blast_" .. tag .. "_ppv.csv"), "w"))
+  f:write("R_m,scaled_distance,ppv_m_s,t_peak_s,eq23_m_s,ratio\n")
+  res.ppv_line = {}
+  for _, l in ipairs(line) do
+    local v, t = ppv(l.mon)
+    local sd = l.y / Q ^ (1 / 3)
+    res.ppv_line[#res.ppv_line + 1] = { R = l.y, sd = sd, ppv = v, eq23 = eq23(sd) }
+    f:write(string.format("%g,%.6g,%.6g,%.6g,%.6g,%.4g\n", l.y, sd, v, t, eq23(sd), v / eq23(sd)))
+  end
+  f:close()
+
+  if dda.has_render then
+    dda.plot{ file = "blast_" .. tag .. "_vy_MP1.png", title = "y-velocity at MP1 (" .. tag .. ")",
+              series = { { monitor = mons.MP1, field = "vy", name = "MP1" } },
+              x_label = "t", x_unit = "ms", x_scale = 1e3, y_label = "vy", y_unit = "m/s" }
+  end
+
+  -- one row per run
+  local path = dda.output("blast_runs.csv")
+  local exists = io.open(path, "r")
+  if exists then exists:close() end
+  f = assert(io.open(path, "a"))
+  if not exists then
+    f:write("tag,size,load,boundary,t_end,blocks,steps,wall_s,ms_per_step,step_cuts,open_close_iterations," ..
+            "ppv_mp1,t_peak_mp1,ppv_mp2,ppv_mp3,uy_mp3_final\n")
+  end
+  f:write(string.format("%s,%g,%s,%s,%g,%d,%d,%.2f,%.2f,%d,%d,%.5g,%.5g,%.5g,%.5g,%.5g\n", tag, cfg.size, cfg.load,
+                        cfg.boundary, cfg.t_end, #M.blocks, tot.steps, tot.wall_seconds,
+                        1e3 * tot.wall_seconds / tot.steps, tot.step_cuts, tot.open_close_iterations, res.MP1,
+                        res.t_peak_MP1, res.MP2, res.MP3, res.uy_MP3[#res.uy_MP3]))
+  f:close()
+
+  if cfg.check then
+    -- (a) first arrival at MP1: |vy| first above 1 % of its peak over the run,
+    -- against the P-wave travel time from the chamber roof (y = 2) to MP1 (y = 8)
+    local rock = blast_model.rock
+    local G = rock.E / (2 * (1 + rock.nu))
+    local lambda = rock.E * rock.nu / ((1 + rock.nu) * (1 - 2 * rock.nu))
+    -- plane-strain P-wave speed sqrt((lambda + 2G)/rho) = 5570 m/s; the paper's
+    -- C_P = 5284.4 m/s is sqrt(E/rho) (the bar speed). The window below takes
+    -- the faster one for the earliest and the slower one for the latest arrival.
+    local cp = math.sqrt((lambda + 2 * G) / rock.density)
+    local cbar = math.sqrt(rock.E / rock.density)
+    local tp = (8 - 2) / cbar
+    local ta, peak = first_arrival(res.times, res.vy.MP1, 0.01)
+    res.t_early = (mp1_ymin - 2) / cp            -- wave at the bottom of MP1's block
+    res.t_late = tp + 0.25e-3                     -- wave at MP1, plus half the load's rise time
+    print(string.format("  check: MP1's block reaches down to y = %.3f m: earliest arrival %.4f ms; latest accepted %.4f ms",
+                        mp1_ymin, 1e3 * res.t_early, 1e3 * res.t_late))
+    print(string.format("  check: C_P = %.1f m/s (plane strain), %.1f m/s (paper, sqrt(E/rho)); travel time roof->MP1 %.4f / %.4f ms; first arrival (|vy| > 1 %% of peak %.4f m/s) %s ms",
+                        cp, cbar, 1e3 * 6 / cp, 1e3 * tp, peak, ta and string.format("%.4f", 1e3 * ta) or "none"))
+    print(string.format("  check: largest penetration %.4g m at %.4f ms; g2 bound %.4g m", max_pen, 1e3 * max_pen_t, bound))
+    res.arrival, res.tp, res.max_pen, res.bound = ta, tp, max_pen, bound
+  end
+  m:close()
+  return res
+end
+
+local function cfg_with(over)
+  local c = { size = P.size, load = P.load, boundary = P.boundary, t_end = P.t_end, frames = P.frames,
+              line_step = P.line_step, check = check, contact_tolerance = P.contact_tolerance }
+  for k, v in pairs(over or {}) do c[k] = v end
+  return c
+end
+
+local function plot_cmp(file, title, results, key, field, ylab, yunit, yscale)
+  if not dda.has_render then return end
+  local colors = { {30, 80, 200}, {215, 50, 30}, {30, 150, 50}, {120, 120, 120} }
+  local s = {}
+  for i, r in ipairs(results) do
+    s[#s + 1] = { name = r.label, x = r.times, y = r[field][key] or r[field], color = colors[i] }
+  end
+  dda.plot{ file = file, title = title, series = s, x_label = "t", x_unit = "ms", x_scale = 1e3,
+            y_label = ylab, y_unit = yunit, y_scale = yscale or 1 }
+end
+
+if figure == "" then
+  local r = run_case(cfg_with())
+  if check then
+    -- arrival window: from the P-wave travel time to the bottom of MP1's block
+    -- (a first-order DDA block responds as a whole) to the travel time to MP1
+    -- itself plus half the 0.5 ms rise of the load
+    local ok_a = r.arrival and r.arrival >= r.t_early and r.arrival <= r.t_late
+    local ok_p = r.max_pen <= r.bound
+    if not ok_a then
+      error(string.format("first arrival at MP1 %s s outside [%.4g, %.4g] s (P-wave travel time roof -> MP1 %.4g s)",
+                          tostring(r.arrival), r.t_early, r.t_late, r.tp))
+    end
+    if not ok_p then
+      error(string.format("contact penetration %.4g m beyond the g2 bound %.4g m", r.max_pen, r.bound))
+    end
+    print("check passed")
+  end
+elseif figure == "14a" then
+  local res = {}
+  for _, size in ipairs{ 120, 100, 80 } do
+    local r = run_case(cfg_with{ size = size, load = "dhi", boundary = "fixed" })
+    r.label = string.format("%g m (PPV %.3f)", size, r.MP1)
+    res[#res + 1] = r
+  end
+  plot_cmp("fig14a_vy_MP1.png", "Fig. 14a: DHI, Fixed BC, y-velocity at MP1", res, "MP1", "vy", "vy", "m/s")
+elseif figure == "14b" then
+  local res = {}
+  for _, load in ipairs{ "dhi", "shi" } do
+    local r = run_case(cfg_with{ size = 100, load = load, boundary = "fixed" })
+    r.label = string.format("%s (PPV %.3f)", load:upper(), r.MP1)
+    res[#res + 1] = r
+  end
+  plot_cmp("fig14b_vy_MP1.png", "Fig. 14b: 100 m, Fixed BC, y-velocity at MP1 (field PPV 0.95)", res, "MP1", "vy",
+           "vy", "m/s")
+elseif figure == "15" then
+  local res = {}
+  for _, b in ipairs{ "fixed", "vbc", "sbc" } do
+    local r = run_case(cfg_with{ size = 100, load = "dhi", boundary = b, t_end = dda.param("t_end", 0.05) })
+    r.label = b:upper()
+    res[#res + 1] = r
+  end
+  plot_cmp("fig15_vy_MP1.png", "Fig. 15: y-velocity at MP1", res, "MP1", "vy", "vy", "m/s")
+  plot_cmp("fig15_syy_MP1.png", "Fig. 15: sigma_yy at MP1", res, "MP1", "syy", "syy", "MPa", 1e-6)
+  plot_cmp("fig16_vy_MP2.png", "Fig. 16: y-velocity at MP2", res, "MP2", "vy", "vy", "m/s")
+  plot_cmp("fig16_syy_MP2.png", "Fig. 16: sigma_yy at MP2", res, "MP2", "syy", "syy", "MPa", 1e-6)
+  plot_cmp("fig17_uy_MP3.png", "Fig. 17: y-displacement at MP3", res, nil, "uy_MP3", "uy", "mm", 1e3)
+  if dda.has_render then
+    local sbc = res[3]
+    local xs, ys, xe, ye = {}, {}, {}, {}
+    for _, p in ipairs(sbc.ppv_line) do xs[#xs + 1] = p.sd; ys[#ys + 1] = p.ppv; xe[#xe + 1] = p.sd; ye[#ye + 1] = p.eq23 end
+    dda.plot{ file = "fig18_ppv_scaled_distance.png", title = "Fig. 18: PPV vs R/Q^(1/3), SBC p = E",
+              series = { { name = "DDA (SBC)", x = xs, y = ys, color = {30, 80, 200} }, { name = "Eq. 23: 1.8 SD^-2.5", x = xe, y = ye, color = {215, 50, 30} } },
+              x_label = "R/Q^(1/3)", x_unit = "m/kg^(1/3)", y_label = "PPV", y_unit = "m/s" }
+  end
+else
+  error("figure must be 14a, 14b or 15, got " .. tostring(figure))
+end

@@ -1,0 +1,48 @@
+-- blast_model.lua: the paper's Section 4 blasting model, shared by blast.lua
+-- (runs) and usable by any script that needs the same geometry (the recipe of
+-- blast_geometry.lua). No run, no output: build{...} returns the model.
+--
+--   local blast_model = require "blast_model"
+--   local M = blast_model.build{ size = 100 }
+--   -- M.m (model), M.rock, M.joint, M.chamber (hole), M.blocks, M.info,
+--   -- M.wall (chamber wall edges), M.outer (outer boundary edges), M.h (size/2)
+--
+-- Square jointed rock mass centred at the origin (the detonation centre), two
+-- joint sets at 45 and 135 deg, 2 m spacing, and the 8 m x 4 m chamber
+-- centred at the origin. Rock: 2650 kg/m^3, E = 74 GPa, nu = 0.2 (plane
+-- strain); joints: phi = 25 deg, c = 2 MPa, sigma_t = 0. Controls g0 = 100e9
+-- N/m, g1 = 1e-5 s, gg = 1, g2 = 0.005.
+
+local dda = require "dda"
+
+local blast_model = {}
+
+blast_model.rock = { density = 2650, E = 74e9, nu = 0.2 }
+blast_model.joint = { friction = 25, cohesion = 2e6, tension = 0 }
+blast_model.controls = { plane = "strain", g0 = 100e9, g1 = 1e-5, g2 = 0.005, gg = 1 }
+blast_model.chamber = { -4, -2, 4, 2 }   -- m: 8 m wide, 4 m high, roof at y = 2
+
+-- opts: size (m, default 100), spacing (m, default 2), controls (table of
+-- extra/overriding model controls, optional).
+function blast_model.build(opts)
+  opts = opts or {}
+  local size = opts.size or 100
+  local spacing = opts.spacing or 2
+  local h = size / 2
+  local controls = {}
+  for k, v in pairs(blast_model.controls) do controls[k] = v end
+  for k, v in pairs(opts.controls or {}) do controls[k] = v end
+
+  local m = dda.model(controls)
+  local rock = m:rock(blast_model.rock)
+  local joint = m:joint(blast_model.joint)
+  m:domain{ box = {-h, -h, h, h}, rock = rock, joint = joint }
+  local chamber = m:hole{ box = blast_model.chamber, joint = joint }
+  m:joint_set{ dip = 45, spacing = spacing, joint = joint }
+  m:joint_set{ dip = 135, spacing = spacing, joint = joint }
+  local blocks, info = m:generate()
+  return { m = m, rock = rock, joint = joint, chamber = chamber, blocks = blocks, info = info,
+           wall = chamber:edges(), outer = m:edges{ boundary = "domain" }, h = h, size = size }
+end
+
+return blast_model
