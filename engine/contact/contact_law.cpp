@@ -64,11 +64,13 @@ bool update_contact_state(Contact& c, ContactIterate& it, const JointMaterial& j
   };
 
   if (c.intact) {
-    // An intact joint holds tension up to σt·L and shear up to c·L + N·tanφ.
-    if (normal < -joint.tensile_strength * c.length) {
+    // An intact joint holds tension up to σt·L and shear up to c·L + N·tanφ,
+    // with the same hysteresis margin as the open-close decision below (at
+    // σt = 0, round-off tension must not break a joint that carries nothing).
+    if (normal < -(joint.tensile_strength * c.length + k.kn * k.tolerance)) {
       c.intact = false;
       c.state = ContactState::Open;
-    } else if (std::abs(shear) > joint.cohesion * c.length + normal * tan_phi) {
+    } else if (std::abs(shear) > joint.cohesion * c.length + normal * tan_phi + k.ks * k.tolerance) {
       c.intact = false;
       if (dn < 0)
         c.state = ContactState::Open;

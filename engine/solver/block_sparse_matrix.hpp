@@ -26,6 +26,9 @@ class BlockSparseMatrix {
   int diagonal(int i) const { return diag_[i]; }
   // Index of block (i, j) in values(), or -1 when not stored.
   int find(int i, int j) const;
+  // The sparsity pattern (compressed block rows), e.g. to tell whether it changed.
+  std::span<const int> row_starts() const { return row_start_; }
+  std::span<const int> columns() const { return cols_; }
 
   Mat6& value(int k) { return values_[k]; }
   const Mat6& value(int k) const { return values_[k]; }

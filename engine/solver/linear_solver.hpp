@@ -54,7 +54,10 @@ class BlockJacobi final : public Preconditioner {
 };
 
 // Preconditioned conjugate gradients with a parallel mat-vec and
-// deterministic (fixed-chunk) dot products.
+// deterministic (fixed-chunk) dot products. The vector updates are fused
+// with the dot products that follow them (A·p with pᵀAp; the x and r
+// updates with ‖r‖²), so an iteration is the mat-vec, the preconditioner and
+// three more passes over the vectors.
 class PcgSolver final : public LinearSolver {
  public:
   explicit PcgSolver(std::unique_ptr<Preconditioner> pre = std::make_unique<BlockJacobi>());
@@ -64,9 +67,13 @@ class PcgSolver final : public LinearSolver {
   SolveReport solve(const VecX& b, VecX& x) override;
 
  private:
+  template <typename F>
+  double chunked_sum(std::size_t blocks, F&& f);
+
   const BlockSparseMatrix* a_ = nullptr;
   std::unique_ptr<Preconditioner> pre_;
-  VecX r_, z_, p_, ap_;  // reused between solves: no allocation in the step loop
+  VecX r_, z_, p_, ap_;          // reused between solves: no allocation in the step loop
+  std::vector<double> partial_;  // per-chunk partial sums of the fused kernels
 };
 
 // Sparse direct LDLᵀ (Eigen). A test oracle, not used by the engine's step.
@@ -80,5 +87,12 @@ class DirectSolver final : public LinearSolver {
 };
 
 double deterministic_dot(const VecX& a, const VecX& b);
+
+// The inverse of a symmetric positive definite 6×6 block by Cholesky, with
+// fixed-size loops (Eigen's solve() with a matrix right-hand side goes
+// through its general blocked triangular solver: 5× the instructions).
+// Returns false, and the reciprocal diagonal, when the block is not
+// positive definite.
+bool invert_spd6(const Mat6& a, Mat6& inverse);
 
 }  // namespace dda

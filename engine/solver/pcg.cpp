@@ -1,5 +1,6 @@
 #include <Eigen/Cholesky>
 #include <Eigen/SparseCholesky>
+#include <algorithm>
 #include <cmath>
 
 #include "core/error.hpp"
@@ -13,20 +14,47 @@ double deterministic_dot(const VecX& a, const VecX& b) {
   return deterministic_sum<double>(blocks, [&](std::size_t i) { return a.segment<6>(6 * i).dot(b.segment<6>(6 * i)); });
 }
 
-void BlockJacobi::setup(const BlockSparseMatrix& a) {
-  inverse_.resize(a.rows());
-  parallel_for_each(a.rows(), [&](std::size_t i) {
-    const Mat6& d = a.value(a.diagonal(static_cast<int>(i)));
-    Eigen::LLT<Mat6> llt(d);
-    if (llt.info() == Eigen::Success) {
-      inverse_[i] = llt.solve(Mat6::Identity());
-    } else {
+bool invert_spd6(const Mat6& a, Mat6& inverse) {
+  // a = L·Lᵀ (lower triangle of a), then L⁻¹ by forward substitution, then a⁻¹ = L⁻ᵀ·L⁻¹.
+  double l[6][6] = {}, li[6][6] = {};
+  for (int j = 0; j < 6; ++j) {
+    double d = a(j, j);
+    for (int k = 0; k < j; ++k) d -= l[j][k] * l[j][k];
+    if (!(d > 0) || !std::isfinite(d)) {
       // Not positive definite (should not happen: every block has inertia).
       // Fall back to the diagonal so the solve can still report what happened.
-      inverse_[i] = Mat6::Zero();
-      for (int k = 0; k < 6; ++k) inverse_[i](k, k) = d(k, k) != 0 ? 1.0 / d(k, k) : 1.0;
+      inverse.setZero();
+      for (int k = 0; k < 6; ++k) inverse(k, k) = a(k, k) > 0 ? 1.0 / a(k, k) : 1.0;
+      return false;
     }
-  });
+    l[j][j] = std::sqrt(d);
+    for (int i = j + 1; i < 6; ++i) {
+      double s = a(i, j);
+      for (int k = 0; k < j; ++k) s -= l[i][k] * l[j][k];
+      l[i][j] = s / l[j][j];
+    }
+  }
+  for (int j = 0; j < 6; ++j) {
+    li[j][j] = 1.0 / l[j][j];
+    for (int i = j + 1; i < 6; ++i) {
+      double s = 0;
+      for (int k = j; k < i; ++k) s -= l[i][k] * li[k][j];
+      li[i][j] = s / l[i][i];
+    }
+  }
+  for (int i = 0; i < 6; ++i)
+    for (int j = 0; j <= i; ++j) {
+      double s = 0;
+      for (int k = i; k < 6; ++k) s += li[k][i] * li[k][j];
+      inverse(i, j) = s;
+      inverse(j, i) = s;
+    }
+  return true;
+}
+
+void BlockJacobi::setup(const BlockSparseMatrix& a) {
+  inverse_.resize(a.rows());
+  parallel_for_each(a.rows(), [&](std::size_t i) { invert_spd6(a.value(a.diagonal(static_cast<int>(i))), inverse_[i]); });
 }
 
 void BlockJacobi::apply(const VecX& r, VecX& z) const {
@@ -41,12 +69,39 @@ void PcgSolver::set_operator(const BlockSparseMatrix& a) {
   pre_->setup(a);
 }
 
+// Fused vector kernels. Each works over fixed chunks of kPcgChunk blocks and
+// returns a dot product summed per chunk, then over the chunks in order: the
+// same bits for any thread count, and no allocation (partial_ is reused).
+namespace {
+constexpr std::size_t kPcgChunk = 64;
+}
+
+template <typename F>
+double PcgSolver::chunked_sum(std::size_t blocks, F&& f) {
+  const std::size_t chunks = (blocks + kPcgChunk - 1) / kPcgChunk;
+  partial_.resize(chunks);
+  parallel_for_each(chunks, [&](std::size_t c) {
+    double s = 0;
+    const std::size_t end = std::min(blocks, (c + 1) * kPcgChunk);
+    for (std::size_t i = c * kPcgChunk; i < end; ++i) s += f(i);
+    partial_[c] = s;
+  }, 1);
+  double total = 0;
+  for (std::size_t c = 0; c < chunks; ++c) total += partial_[c];
+  return total;
+}
+
 SolveReport PcgSolver::solve(const VecX& b, VecX& x) {
   DDA_ASSERT(a_ != nullptr, "PcgSolver::solve before set_operator");
+  const BlockSparseMatrix& a = *a_;
   SolveReport report;
   const std::size_t n = static_cast<std::size_t>(b.size());
+  const std::size_t blocks = n / 6;
   if (x.size() != b.size()) x = VecX::Zero(b.size());
-  const double bnorm = std::sqrt(deterministic_dot(b, b));
+  r_.resize(n);
+  p_.resize(n);
+  ap_.resize(n);
+  const double bnorm = std::sqrt(chunked_sum(blocks, [&](std::size_t i) { return b.segment<6>(6 * i).squaredNorm(); }));
   if (!std::isfinite(bnorm)) {
     report.finite = false;
     return report;
@@ -56,36 +111,52 @@ SolveReport PcgSolver::solve(const VecX& b, VecX& x) {
     report.converged = true;
     return report;
   }
-  a_->multiply(x, ap_);
-  r_ = b - ap_;
-  double rnorm = std::sqrt(deterministic_dot(r_, r_));
-  report.relative_residual = rnorm / bnorm;
+  // r = b − A·x, and ‖r‖², one block row per task.
+  double rr = chunked_sum(blocks, [&](std::size_t i) {
+    Vec6 s = b.segment<6>(6 * i);
+    for (int k = a.row_begin(static_cast<int>(i)); k < a.row_end(static_cast<int>(i)); ++k)
+      s.noalias() -= a.value(k) * x.segment<6>(6 * a.col(k));
+    r_.segment<6>(6 * i) = s;
+    return s.squaredNorm();
+  });
+  report.relative_residual = std::sqrt(rr) / bnorm;
+  if (!std::isfinite(rr)) {
+    report.finite = false;
+    return report;
+  }
   if (report.relative_residual <= tolerance) {
     report.converged = true;
     return report;
   }
   pre_->apply(r_, z_);
-  p_ = z_;
-  double rz = deterministic_dot(r_, z_);
-  const std::size_t blocks = n / 6;
+  double rz = chunked_sum(blocks, [&](std::size_t i) {
+    p_.segment<6>(6 * i) = z_.segment<6>(6 * i);
+    return r_.segment<6>(6 * i).dot(z_.segment<6>(6 * i));
+  });
   for (int it = 1; it <= max_iterations; ++it) {
-    a_->multiply(p_, ap_);
-    const double pap = deterministic_dot(p_, ap_);
-    if (!std::isfinite(pap) || pap <= 0) {
-      report.finite = std::isfinite(pap);
-      report.iterations = it;
-      return report;  // not converged: breakdown (matrix not SPD, or NaN)
+    // ap = A·p and pᵀAp in one pass.
+    const double pap = chunked_sum(blocks, [&](std::size_t i) {
+      Vec6 s = Vec6::Zero();
+      for (int k = a.row_begin(static_cast<int>(i)); k < a.row_end(static_cast<int>(i)); ++k)
+        s.noalias() += a.value(k) * p_.segment<6>(6 * a.col(k));
+      ap_.segment<6>(6 * i) = s;
+      return p_.segment<6>(6 * i).dot(s);
+    });
+    report.iterations = it;
+    if (!std::isfinite(pap) || pap <= 0 || !(rz > 0)) {
+      report.finite = std::isfinite(pap) && std::isfinite(rz);
+      return report;  // not converged: breakdown (matrix or preconditioner not SPD, or NaN)
     }
     const double alpha = rz / pap;
-    parallel_for_each(blocks, [&](std::size_t i) {
+    // x += α·p, r −= α·Ap, and ‖r‖² in one pass.
+    rr = chunked_sum(blocks, [&](std::size_t i) {
       x.segment<6>(6 * i) += alpha * p_.segment<6>(6 * i);
       r_.segment<6>(6 * i) -= alpha * ap_.segment<6>(6 * i);
-    }, 256);
-    rnorm = std::sqrt(deterministic_dot(r_, r_));
-    report.iterations = it;
-    report.relative_residual = rnorm / bnorm;
+      return r_.segment<6>(6 * i).squaredNorm();
+    });
+    report.relative_residual = std::sqrt(rr) / bnorm;
     if (monitor) monitor(it, report.relative_residual);
-    if (!std::isfinite(rnorm)) {
+    if (!std::isfinite(rr)) {
       report.finite = false;
       return report;
     }
@@ -94,10 +165,10 @@ SolveReport PcgSolver::solve(const VecX& b, VecX& x) {
       return report;
     }
     pre_->apply(r_, z_);
-    const double rz_next = deterministic_dot(r_, z_);
+    const double rz_next = chunked_sum(blocks, [&](std::size_t i) { return r_.segment<6>(6 * i).dot(z_.segment<6>(6 * i)); });
     const double beta = rz_next / rz;
     rz = rz_next;
-    parallel_for_each(blocks, [&](std::size_t i) { p_.segment<6>(6 * i) = z_.segment<6>(6 * i) + beta * p_.segment<6>(6 * i); }, 256);
+    parallel_for_each(blocks, [&](std::size_t i) { p_.segment<6>(6 * i) = z_.segment<6>(6 * i) + beta * p_.segment<6>(6 * i); }, kPcgChunk);
   }
   return report;
 }

@@ -1,20 +1,27 @@
 #include "solver/preconditioner_choice.hpp"
 
 #include "core/error.hpp"
+#include "solver/multigrid.hpp"
 #include "world/world.hpp"
 
 namespace dda {
 
-Preconditioning choose_preconditioning(Preconditioning requested, const SystemTraits& /*traits*/) {
+Preconditioning choose_preconditioning(Preconditioning requested, const SystemTraits& traits) {
   if (requested != Preconditioning::Auto) return requested;
-  return Preconditioning::BlockJacobi;
+  if (traits.blocks < kMultigridMinBlocks) return Preconditioning::BlockJacobi;
+  if (!traits.last_kind || *traits.last_kind == Preconditioning::Auto)
+    return traits.stiffness_to_inertia >= kStiffnessToInertiaForMultigrid ? Preconditioning::Multigrid
+                                                                          : Preconditioning::BlockJacobi;
+  if (*traits.last_kind == Preconditioning::BlockJacobi)
+    return traits.last_cg_per_solve > kToMultigrid ? Preconditioning::Multigrid : Preconditioning::BlockJacobi;
+  return traits.last_cg_per_solve < kToBlockJacobi ? Preconditioning::BlockJacobi : Preconditioning::Multigrid;
 }
 
 std::unique_ptr<Preconditioner> make_preconditioner(Preconditioning kind) {
   switch (kind) {
     case Preconditioning::Auto:
     case Preconditioning::BlockJacobi: return std::make_unique<BlockJacobi>();
-    case Preconditioning::Multigrid: throw Error("controls: the multigrid preconditioner is not available in this build");
+    case Preconditioning::Multigrid: return std::make_unique<Multigrid>();
   }
   return std::make_unique<BlockJacobi>();
 }

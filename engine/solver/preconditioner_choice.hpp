@@ -1,6 +1,25 @@
 #pragma once
 // Which preconditioner a World's PCG uses, decided once per step.
+//
+// Auto is adaptive and deterministic: it looks only at iteration counts of
+// earlier steps, which are the same for any thread count (PCG's reductions
+// are fixed-order), so the choice — and with it every result bit — does not
+// depend on the threads either.
+//
+//   * Small models (fewer than kMultigridMinBlocks blocks) and the first step
+//     without a hint: block-Jacobi.
+//   * Block-Jacobi whose last step needed more than kToMultigrid (300) CG
+//     iterations per solve (contacts and elasticity dominate the inertia:
+//     quasi-static walls, slopes): multigrid from the next step on.
+//   * Multigrid whose last step needed fewer than kToBlockJacobi (30) iterations
+//     per solve (inertia dominates again, e.g. after Δt was cut): back to
+//     block-Jacobi. The gap between the two thresholds (multigrid takes
+//     about 4–5 times fewer iterations than block-Jacobi on walls) keeps the
+//     choice from flip-flopping.
+//   * A first step with stiffness_to_inertia given: multigrid when it is at
+//     least kStiffnessToInertiaForMultigrid.
 #include <memory>
+#include <optional>
 
 #include "solver/linear_solver.hpp"
 
@@ -10,11 +29,29 @@ enum class Preconditioning;
 
 // Facts about the system that decide Preconditioning::Auto.
 struct SystemTraits {
+  SystemTraits() = default;
+  SystemTraits(int blocks_, double stiffness_to_inertia_ = 0) : blocks(blocks_), stiffness_to_inertia(stiffness_to_inertia_) {}
+
   int blocks = 0;
   // Largest ratio, over blocks, of contact + elastic stiffness to the inertia
-  // term 2m/Δt²: small for waves (inertia-dominated), large for quasi-static.
+  // term 2m/Δt² (0 when unknown): small for waves (inertia-dominated), large
+  // for quasi-static problems. Only used before any step has been solved.
   double stiffness_to_inertia = 0;
+  // The last solved step: the preconditioner it used and its CG iterations
+  // per solve (StepStats::cg_iterations / open_close_iterations). Empty
+  // before the first step.
+  std::optional<Preconditioning> last_kind;
+  double last_cg_per_solve = 0;
 };
+
+inline constexpr int kMultigridMinBlocks = 64;
+// From measurements (callgrind, wall(10/20)): a multigrid PCG iteration costs
+// about 4 block-Jacobi ones, and multigrid needs 4–6 times fewer iterations
+// where block-Jacobi needs 300–600 per solve; so multigrid pays from about
+// 300 block-Jacobi iterations per solve on, more the weaker the inertia.
+inline constexpr double kToMultigrid = 300;   // block-Jacobi CG iterations per solve
+inline constexpr double kToBlockJacobi = 30;  // multigrid CG iterations per solve
+inline constexpr double kStiffnessToInertiaForMultigrid = 50;
 
 // The kind to use for these traits (Auto resolved; others returned as given).
 Preconditioning choose_preconditioning(Preconditioning requested, const SystemTraits& traits);

@@ -144,7 +144,14 @@ void World::resolve_controls() {
   for (std::size_t r = 0; r < rocks_.size(); ++r) m.elastic[r] = elastic_matrix(rocks_[r], c.plane);
   // Preconditioner: chosen per step (Auto looks at the system), rebuilt only
   // when the choice changes.
-  const Preconditioning kind = choose_preconditioning(c.preconditioner, SystemTraits{static_cast<int>(block_count()), 0.0});
+  // Auto switches on the last step's CG iterations per solve, which are the
+  // same for any thread count, so the choice stays deterministic.
+  SystemTraits traits(static_cast<int>(block_count()));
+  if (m.preconditioner_kind && last_stats_.open_close_iterations > 0) {
+    traits.last_kind = *m.preconditioner_kind;
+    traits.last_cg_per_solve = static_cast<double>(last_stats_.cg_iterations) / last_stats_.open_close_iterations;
+  }
+  const Preconditioning kind = choose_preconditioning(c.preconditioner, traits);
   if (!m.preconditioner_kind || *m.preconditioner_kind != kind) {
     m.solver.set_preconditioner(make_preconditioner(kind));
     m.preconditioner_kind = kind;
@@ -395,7 +402,10 @@ void World::assemble_point_terms(double dt) {
       m.own_k[p.block] += (2.0 / dt) * t.transpose() * p.c * t;
       m.own_f[p.block] += t.transpose() * (p.c * (t * (controls_.gg * velocity_[p.block])));
     } else {
-      add_spring(p.block, p.point, p.k * Eigen::Matrix2d::Identity(), p.origin);
+      // SBC: the fixed-point sub-matrix without the fixed point's residual
+      // term (the paper's §3.3.1): the spring acts on this step's
+      // displacement only, so it draws p·l·Δu from a moving boundary.
+      add_spring(p.block, p.point, p.k * Eigen::Matrix2d::Identity(), p.point);
     }
   }
 }
@@ -500,11 +510,12 @@ void World::update(double dt) {
   for (DisplacementTarget& p : targets_) p.point += point_displacement(p.point, centroid_[p.block], d_of(p.block));
   for (BoundaryPoint& p : boundary_points_) {
     const Mat26 t = displacement_matrix(p.point, centroid_[p.block]);
-    // Force at the end of the step: −c·v1 (dashpot) or k·(start − position) (spring).
+    // Force at the end of the step: −c·v1 (dashpot) or −k·Δu (spring).
     if (boundaries_[p.boundary].kind == BoundaryKind::Viscous)
       p.force = -p.c * (t * (2.0 / dt * d_of(p.block) - controls_.gg * velocity_[p.block]));
-    p.point += point_displacement(p.point, centroid_[p.block], d_of(p.block));
-    if (boundaries_[p.boundary].kind == BoundaryKind::Spring) p.force = p.k * (p.origin - p.point);
+    const Vec2 moved = point_displacement(p.point, centroid_[p.block], d_of(p.block));
+    if (boundaries_[p.boundary].kind == BoundaryKind::Spring) p.force = -p.k * moved;
+    p.point += moved;
   }
 
   const double gg = controls_.gg;

@@ -138,8 +138,11 @@ class World {
   // edge length: traction −ρ(C_P v_n n + C_S v_s s), n the outward normal,
   // with ρ, C_P = sqrt((K + 4G/3)/ρ), C_S = sqrt(G/ρ) of the edge's block.
   int add_viscous_boundary(const std::vector<EdgeRef>& edges);
-  // SBC (Eq. 22): at each end of each edge a spring p·l·TᵀT to the point's
-  // starting position (Eq. 21, p without the edge length, when per_length is false).
+  // SBC (Eq. 22): at each end of each edge a spring p·l·TᵀT (Eq. 21's p
+  // without the edge length when per_length is false). As the paper says, it
+  // is the fixed-point sub-matrix without the fixed point's residual term: it
+  // resists each step's displacement Δu with p·l·Δu and does not pull the
+  // boundary back to its start (acting like a dashpot p·l·Δt).
   int add_spring_boundary(const std::vector<EdgeRef>& edges, double p, bool per_length = true);
   // Forces (N) the boundary's points exerted at the end of the last step.
   std::vector<Vec2> boundary_point_forces(int id) const;

@@ -1,0 +1,168 @@
+-- validation_report.lua: runs the paper's Section 2-3 figure scripts and writes
+-- the validation report.
+--
+-- Models:  fig3_joint_stiffness, fig4_frequency, fig5_joint_strength,
+--          fig6_joint_direction, fig7_fixed_free, fig8_vbc_sbc, fig10_model4,
+--          fig11_models5_6 (scripts/paper/), one after the other in this process,
+--          with their default parameters (the full runs, about 40 bar runs).
+--          Definitions of every measured quantity: scripts/paper/wave.lua.
+-- Run:     build/dda run scripts/paper/validation_report.lua [--set figures=fig3,fig7]
+--                   [--set docs=docs] [--out out/validation]
+-- Writes:  <docs>/validation.md (paper vs ours, difference, T/dt, targets, notes on
+--          differences over 10 %, plots), <docs>/validation.csv
+--          (figure,quantity,paper,ours,unit), <docs>/figures/*.png (the plots);
+--          the runs' histories and per-figure numbers under the --out folder.
+--          <docs> is relative to the repository root (two folders above this script).
+
+local dda = require "dda"
+local wave = require "wave"
+
+local here = debug.getinfo(1, "S").source:gsub("^@", ""):match("^(.*)/[^/]*$") or "."
+local root = here .. "/../.."
+local docs = root .. "/" .. tostring(dda.param("docs", "docs"))
+local wanted = tostring(dda.param("figures",
+  "fig3_joint_stiffness,fig4_frequency,fig5_joint_strength,fig6_joint_direction," ..
+  "fig7_fixed_free,fig8_vbc_sbc,fig10_model4,fig11_models5_6"))
+
+local figs = {}
+local started = os.time()
+for name in wanted:gmatch("[^,]+") do
+  local file = name:match("%.lua$") and name or name .. ".lua"
+  local t0 = os.time()
+  figs[#figs + 1] = dofile(here .. "/" .. file)
+  figs[#figs].seconds = os.time() - t0
+end
+
+os.execute(string.format("mkdir -p '%s/figures'", docs))
+local function copy(src, dst)
+  local i = assert(io.open(src, "rb")); local data = i:read("a"); i:close()
+  local o = assert(io.open(dst, "wb")); o:write(data); o:close()
+end
+
+-- Why a number differs by more than 10 %: notes keyed by a pattern of the row's quantity.
+local why = {
+  { "VBC", "The engine's VBC (Eqs. 6-12) applies the dashpots implicitly at the end-of-step " ..
+    "velocity (2d/dt - gg v0), which is the exact impedance-matched dashpot rho*C*l for a 1-D bar; it " ..
+    "absorbs more than the paper's 78.77 %. The paper does not say at which velocity its dashpot " ..
+    "forces are evaluated; an explicit (previous-step velocity) or a differently lumped dashpot absorbs " ..
+    "less. Running the same bar with the dashpot at the previous step's velocity would settle it." },
+  { "SBC", "The engine's SBC is a spring to the point's starting position (restoring force p*(total " ..
+    "displacement)). The paper's SBC is Shi's fixed-point sub-matrix without the residual-displacement " ..
+    "term (Sec. 3.3.1), i.e. a stiffness on the displacement increment of each step only; that acts as " ..
+    "a dashpot of coefficient p0*dt per point. With p0 = 10E, 10 points on Model 1's right end and " ..
+    "dt = 2e-6 s this gives 10 * 5e11 * 2e-6 = 1e7 N s/m = rho*C*H, the exact 1-D impedance, which " ..
+    "explains the paper's 96.43 %, Model 4's 73.39 % (6 points at 10E) and 94.87 % (6 points at 16E), " ..
+    "and Fig. 8b's drifting boundary displacement. A true spring of p0 >= E is far stiffer than the " ..
+    "bar's impedance at 1000 Hz (rho*C*H*omega = 6.3e10 N/m) and reflects like the Fixed end. An " ..
+    "engine option for the incremental (paper) form would settle it. The rows 'SBC increment form " ..
+    "(emulated)' run that reading with Lua point loads (explicit: each step's force is -p0 times the previous " ..
+    "step's increment, so not identical to an implicit stiffness) and land close to the paper's numbers, " ..
+    "boundary displacement included." },
+  { "Model 2 level", "With sigma_t = 0 (level 3) the engine opens most joints before the wave arrives: " ..
+    "an intact contact fails in tension when its normal force is below -sigma_t*L, with no tolerance, so at " ..
+    "sigma_t = 0 a contact at rest fails on round-off (engine/contact/contact_law.cpp, the intact branch of " ..
+    "update_contact_state; the open/close branch has the contact_tolerance hysteresis, this one has not). " ..
+    "A probe of Model 2 level 3 had 1193 of 1572 contacts open and 373 intact after 10 steps (t = 2e-5 s), " ..
+    "against 1 open with sigma_t = 2 MPa; the bar then carries the pulse through frictional contacts only " ..
+    "and it dies out before the centre. Applying the same hysteresis to the intact tension check would settle " ..
+    "it. For levels 1-2, the paper's Model 2 geometry (where the 60 deg set starts) is not given, and the " ..
+    "second (reflected) peak depends on it." },
+  { "attenuation", "The attenuation is a small difference of two numbers near 5 MPa: a 0.05 MPa " ..
+    "change in the peak moves it by a whole point, so the relative difference is large while the peak " ..
+    "itself agrees within about 1-2 %. The sampled peak (dt = 2e-6 s, 500 steps per period, refined " ..
+    "by a parabola) and the block-average stress of the 0.2 m monitor block both shave the peak." },
+  { "reflected vx", "The velocity is the block's centroid velocity; see the stress rows for the pulse." },
+}
+local function note_for(q)
+  for _, w in ipairs(why) do if q:find(w[1]) then return w[2] end end
+  return "No explanation found yet."
+end
+
+local rows = {}
+local md = {}
+local function w(s) md[#md + 1] = s end
+w("# Validation: the paper's rock-bar experiments (Sections 2 and 3)")
+w("")
+w("Generated by `build/dda run scripts/paper/validation_report.lua` on " .. os.date("!%Y-%m-%d %H:%M UTC") ..
+  string.format(" (%d s of wall time). Every number below was measured in that run.", os.time() - started))
+w("Paper values: `../shared/paper/reference-numbers.md` and the paper's text. The same rows are in")
+w("[validation.csv](validation.csv) (`figure,quantity,paper,ours,unit`).")
+w("")
+w("**Definitions** (also in `scripts/paper/wave.lua`). Load: pressure on the left-end edges, " ..
+  "5 MPa, p(t) = A sin(2 pi f t) over a half period (compression) or one full period (compression " ..
+  "first). The centre monitor is (10.1, 0.5), the block just right of x = 10 m; stress is tension-positive. " ..
+  "Peaks are the sampled extreme refined by a parabola through three samples. Wave speed = 10.1 m / " ..
+  "(t_peak,centre - t_peak,input) for the same peak: the first tensile peak (input at 3T/4) for full-sine " ..
+  "loads, the compressive peak (input at T/4) for half-sine loads. Attenuation = 1 - |peak| / 5 MPa. " ..
+  "The incident and reflected pulses at the centre are split at t = 20 m / c + (load duration)/2 " ..
+  "(c = 5000 m/s, 4000 m/s for g0 < 10E); reflected amplitude = the value of largest magnitude after it. " ..
+  "Absorbed share = 1 - |reflected with the boundary| / |reflected with Fixed| in the same model. " ..
+  "T/dt = wave period over the mean step (dt = g1 = 2e-6 s unless cut). Common controls: g1 = 2e-6 s, " ..
+  "gg = 1, g2 = 0.005, rho = 2000 kg/m^3, E = 50 GPa, nu = 0.25, plane stress.")
+w("")
+local all_pass, all_fail = {}, {}
+for _, fig in ipairs(figs) do
+  w("## " .. fig.title)
+  w("")
+  w("| quantity | paper | ours | difference | T/dt |")
+  w("|---|---:|---:|---:|---:|")
+  local notes = {}
+  for _, r in ipairs(fig.rows) do
+    rows[#rows + 1] = r
+    local paper, diff = "–", "–"
+    if r.paper then
+      paper = string.format("%.4g", r.paper)
+      local d = r.ours - r.paper
+      local rel = r.paper ~= 0 and 100 * d / math.abs(r.paper) or 0
+      diff = string.format("%+.3g (%+.1f %%)", d, rel)
+      if math.abs(rel) > 10 then notes[#notes + 1] = { r.quantity, note_for(r.quantity) } end
+    end
+    w(string.format("| %s | %s | %.4g | %s | %s |", r.quantity .. (r.unit ~= "" and " (" .. r.unit .. ")" or ""),
+                    paper, r.ours, diff, r.tdt and string.format("%.0f", r.tdt) or "–"))
+  end
+  w("")
+  if #notes > 0 then
+    w("Differences over 10 %:")
+    w("")
+    local seen = {}
+    for _, n in ipairs(notes) do
+      local key = n[2]
+      if not seen[key] then
+        seen[key] = true
+        local names = {}
+        for _, m in ipairs(notes) do if m[2] == key then names[#names + 1] = m[1] end end
+        w("- *" .. table.concat(names, "; ") .. "*: " .. key)
+      end
+    end
+    w("")
+  end
+  if #fig.passes + #fig.failures > 0 then
+    w("Targets (issue 5):")
+    w("")
+    for _, t in ipairs(fig.passes) do w("- PASS: " .. t); all_pass[#all_pass + 1] = fig.name .. ": " .. t end
+    for _, t in ipairs(fig.failures) do w("- **FAIL**: " .. t); all_fail[#all_fail + 1] = fig.name .. ": " .. t end
+    w("")
+  end
+  for _, p in ipairs(fig.plots) do
+    local base = p:match("([^/]+)$")
+    copy(p, docs .. "/figures/" .. base)
+    w(string.format("![%s](figures/%s)", base, base))
+    w("")
+  end
+  w(string.format("*(%s: %d s)*", fig.name, fig.seconds))
+  w("")
+end
+w("## Targets summary")
+w("")
+w(string.format("%d passed, %d failed.", #all_pass, #all_fail))
+w("")
+for _, t in ipairs(all_fail) do w("- **FAIL** " .. t) end
+for _, t in ipairs(all_pass) do w("- PASS " .. t) end
+w("")
+
+local f = assert(io.open(docs .. "/validation.md", "w"))
+f:write(table.concat(md, "\n"), "\n")
+f:close()
+wave.write_rows(docs .. "/validation.csv", rows)
+print(string.format("wrote %s/validation.md, %s/validation.csv (%d rows; targets %d passed, %d failed)",
+                    docs, docs, #rows, #all_pass, #all_fail))
