@@ -8,9 +8,9 @@
 --          magnitude at the centre after t_split (signed); absorbed share =
 --          1 - |reflected| / |reflected with Fixed|. Fig. 8b: ux at (19.9, 0.5),
 --          the block at the right end; "final" = the last recorded value.
---          Also (incremental=5,10; "" for none) the paper's SBC read as a spring on
---          each step's displacement increment, emulated with point loads (wave.lua,
---          right = "sbc_incremental"): for comparison only, no target uses it.
+--          With incremental=5,10 (default "": none) an explicit emulation of the SBC (a spring on
+--          each step's displacement increment, with point loads; wave.lua,
+--          right = "sbc_incremental") beside the engine's implicit SBC; no target uses it.
 -- Run:     build/dda run scripts/paper/fig8_vbc_sbc.lua [--set p0s=0.01,0.1,1,10,100]
 --                   [--set vbc=true] [--set t_end=7e-3] [--set check=true] [--out out]
 -- Writes:  out/fig8_<bc>.csv (sxx, vx at the centre), out/fig8_<bc>_end.csv (ux at
@@ -61,7 +61,7 @@ for k in p0s:gmatch("[^,]+") do
   runs[#runs + 1] = r; labels[#labels + 1] = "SBC p0 = " .. k .. "E"
 end
 -- The paper's SBC read as a spring on the step increment (see wave.lua), emulated.
-local inc = tostring(dda.param("incremental", "5,10"))
+local inc = tostring(dda.param("incremental", ""))
 for k in inc:gmatch("[^,]+") do
   local p = tonumber(k)
   local r = go("sbc_incremental_p0_" .. k .. "E", "sbc_incremental", p)
