@@ -1,0 +1,74 @@
+-- bench.lua: time one benchmark scene and append a row to a CSV table.
+--
+-- Models:  one scene of scenes.lua: --set scene=wall --set n=40 | scene=blast
+--          --set h=2 | scene=bar; --set threads=1|2; --set steps=10 timed steps
+--          after --set warmup=2 untimed ones.
+-- Run:     build/dda run scripts/bench/bench.lua --set scene=wall --set n=20 --set threads=2 [--set csv=FILE]
+--          (scripts/bench/run.sh runs the whole table, one process per row so
+--          that each row's peak memory is its own).
+-- Writes:  prints one table row; with --set csv=FILE appends it to FILE with the
+--          columns scene,threads,blocks,contacts,steps,ms_per_step,block_steps_per_s,
+--          oc_per_step,cg_per_step,cuts,detect_share,assemble_share,solve_share,
+--          update_share,other_share,peak_rss_mb.
+
+local dda = require "dda"
+package.path = package.path .. ";" .. (debug.getinfo(1, "S").source:match("@?(.*/)") or "./") .. "?.lua"
+local scenes = require "scenes"
+
+local scene = dda.param("scene", "wall")
+local threads = dda.param("threads", 1)
+local steps = dda.param("steps", 10)
+local warmup = dda.param("warmup", 2)
+local csv = dda.param("csv", "")
+
+local m, name
+if scene == "wall" then
+  local n = dda.param("n", 10)
+  m, name = scenes.wall(n, threads), string.format("wall(%d)", n)
+elseif scene == "blast" then
+  local h = dda.param("h", 2)
+  m, name = scenes.blast(h, threads), string.format("blast(%g)", h)
+elseif scene == "bar" then
+  m, name = scenes.bar(threads), "bar"
+else
+  error("unknown scene '" .. tostring(scene) .. "' (wall, blast, bar)")
+end
+
+m:step(warmup)
+local sum = { t_detect = 0, t_assemble = 0, t_solve = 0, t_check = 0, t_update = 0, t_total = 0,
+              open_close_iterations = 0, cg_iterations = 0, step_cuts = 0 }
+for _ = 1, steps do
+  m:step(1)
+  local s = m:stats()
+  for k in pairs(sum) do sum[k] = sum[k] + s[k] end
+end
+local contacts = m:stats().contacts
+local blocks = #m:blocks{}
+
+local function peak_rss_mb()
+  local f = io.open("/proc/self/status", "r")
+  if not f then return 0 end
+  for line in f:lines() do
+    local kb = line:match("^VmHWM:%s+(%d+)")
+    if kb then f:close() return tonumber(kb) / 1024 end
+  end
+  f:close()
+  return 0
+end
+
+local total = sum.t_total
+local ms = 1e3 * total / steps
+local function share(x) return total > 0 and x / total or 0 end
+local other = total - sum.t_detect - sum.t_assemble - sum.t_solve - sum.t_check - sum.t_update
+local row = string.format("%s,%d,%d,%d,%d,%.3f,%.0f,%.2f,%.1f,%d,%.3f,%.3f,%.3f,%.3f,%.3f,%.1f",
+  name, threads, blocks, contacts, steps, ms, blocks * steps / total, sum.open_close_iterations / steps,
+  sum.cg_iterations / steps, sum.step_cuts, share(sum.t_detect), share(sum.t_assemble),
+  share(sum.t_solve + sum.t_check), share(sum.t_update), share(other), peak_rss_mb())
+print(string.format("%-10s threads %d  blocks %6d  contacts %7d  %9.2f ms/step  %9.0f block-steps/s  oc %.2f  cg %.1f  cuts %d",
+  name, threads, blocks, contacts, ms, blocks * steps / total, sum.open_close_iterations / steps,
+  sum.cg_iterations / steps, sum.step_cuts))
+if csv ~= "" then
+  local f = assert(io.open(csv, "a"))
+  f:write(row, "\n")
+  f:close()
+end

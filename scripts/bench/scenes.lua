@@ -1,0 +1,69 @@
+-- scenes.lua: the benchmark scenes of issue 8, as a module (no run).
+--
+-- Models:  wall(N)   quasi-static brick wall: N columns of 1 m x 0.5 m bricks,
+--                    2N rows in running bond (half bricks at alternate row ends),
+--                    on a 1 m thick base held by three fixed points; rho = 2600,
+--                    E = 5 GPa, nu = 0.25, plane stress, friction 30 deg, no
+--                    cohesion or tension, gravity, dt = 1e-3 s, g2 = 0.001,
+--                    g0 = 50E, open-close limit 8. N = 10, 20, 40 give 211, 821
+--                    and 3,241 blocks.
+--          blast(h)  the paper's Section 4 model (100 m square, sets at 45 and
+--                    135 deg with spacing h, chamber, DHI load on the chamber wall).
+--          bar       the paper's rock bar Model 1 (500 blocks, g1 = 2e-6 s,
+--                    g0 = 20E, half-sine pressure at the left end).
+-- Run:     used by scripts/bench/bench.lua (build/dda run scripts/bench/bench.lua --set scene=wall --set n=20)
+-- Writes:  nothing.
+
+local dda = require "dda"
+local scenes = {}
+
+function scenes.wall(n, threads)
+  local E = 5e9
+  local m = dda.model{ plane = "stress", g0 = 50 * E, g1 = 1e-3, g2 = 0.001, gg = 1, open_close_limit = 8,
+                       gravity = {0, -9.81}, threads = threads }
+  local rock = m:rock{ density = 2600, E = E, nu = 0.25 }
+  local joint = m:joint{ friction = 30, cohesion = 0, tension = 0 }
+  local base = m:add_block{ {-1, -1}, {n + 1, -1}, {n + 1, 0}, {-1, 0}, rock = rock, joint = joint }
+  m:fix(0, -0.5)
+  m:fix(n / 2, -0.5)
+  m:fix(n, -0.5)
+  local function brick(x0, y0, w)
+    m:add_block{ {x0, y0}, {x0 + w, y0}, {x0 + w, y0 + 0.5}, {x0, y0 + 0.5}, rock = rock, joint = joint }
+  end
+  for row = 0, 2 * n - 1 do
+    local y = row * 0.5
+    if row % 2 == 0 then
+      for c = 0, n - 1 do brick(c, y, 1) end
+    else
+      brick(0, y, 0.5)
+      for c = 0, n - 2 do brick(0.5 + c, y, 1) end
+      brick(n - 0.5, y, 0.5)
+    end
+  end
+  return m
+end
+
+function scenes.blast(h, threads)
+  package.path = package.path .. ";" .. (debug.getinfo(1, "S").source:match("@?(.*/)") or "./") .. "../paper/?.lua"
+  local blast_model = require "blast_model"
+  local b = blast_model.build{ size = 100, spacing = h, controls = { threads = threads } }
+  b.wall:target{ velocity = { {0, 0}, {0.5e-3, 2.03}, {2.5e-3, 0} } }
+  b.outer:fix()
+  return b.m
+end
+
+function scenes.bar(threads)
+  local E = 50e9
+  local m = dda.model{ plane = "stress", g0 = 20 * E, g1 = 2e-6, g2 = 0.005, gg = 1, threads = threads }
+  local rock = m:rock{ density = 2000, E = E, nu = 0.25 }
+  local joint = m:joint{ friction = 40, cohesion = 8e6, tension = 8e6 }
+  m:domain{ box = {0, 0, 20, 1}, rock = rock }
+  m:joint_set{ dip = 0, spacing = 0.2, joint = joint }
+  m:joint_set{ dip = 90, spacing = 0.2, joint = joint }
+  m:generate()
+  m:edges{ on_segment = {0, 0, 0, 1} }:pressure{ {0, 0}, {2.5e-4, 5e6}, {5e-4, 0} }
+  m:edges{ on_segment = {20, 0, 20, 1} }:fix()
+  return m
+end
+
+return scenes
