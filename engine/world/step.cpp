@@ -35,7 +35,9 @@ StepStats World::step() {
       const Rejection r = static_cast<Rejection>(solve_step(dt_));
       if (r == Rejection::None) break;
       if (stats.step_cuts == controls_.max_step_cuts)
-        throw Error(msg("step ", steps_ + 1, " at t = ", time_, " s: ", describe(r), " even after ", stats.step_cuts,
+        throw Error(msg("step ", steps_ + 1, " at t = ", time_, " s: ", describe(r),
+                        r == Rejection::BlockInverted ? msg(" (block ", m.inverted_block, ")") : std::string(),
+                        " even after ", stats.step_cuts,
                         " cuts of the time step (down to ", dt_, " s). ",
                         r == Rejection::PenetrationTooDeep ? "Raise g0 (contact stiffness) or g2." : "Check loads, g0 and g2."));
       ++stats.step_cuts;
@@ -312,6 +314,7 @@ int World::solve_step(double dt) {
   }
   if (!settled) return static_cast<int>(Rejection::OpenCloseUnsettled);
   if (largest_step_displacement() > controls_.g2 * half_height_) return static_cast<int>(Rejection::DisplacementTooLarge);
+  if ((m.inverted_block = first_inverted_block()) >= 0) return static_cast<int>(Rejection::BlockInverted);
   if (deepest_penetration() > controls_.g2 * half_height_) return static_cast<int>(Rejection::PenetrationTooDeep);
   return static_cast<int>(Rejection::None);
 }
@@ -489,6 +492,28 @@ double World::largest_step_displacement() const {
       worst = std::max(worst, point_displacement(vertices_[v], centroid_[b], d).norm());
     return worst;
   });
+}
+
+// A block whose updated outline would have zero or negative area (a sliver
+// crushed by stiff springs, say): the step must not be accepted.
+BlockId World::first_inverted_block() const {
+  const Impl& m = *impl_;
+  const std::size_t n = block_count();
+  std::vector<char> inverted(n, 0);
+  parallel_for_each(n, [&](std::size_t b) {
+    const Vec6 d = m.solution.segment<6>(6 * b);
+    double twice = 0;
+    const int first = vertex_start_[b], count = vertex_start_[b + 1] - first;
+    const Vec2 o = vertices_[first] + point_displacement(vertices_[first], centroid_[b], d);
+    for (int k = 1; k + 1 < count; ++k) {
+      const Vec2 p = vertices_[first + k] + point_displacement(vertices_[first + k], centroid_[b], d) - o;
+      const Vec2 q = vertices_[first + k + 1] + point_displacement(vertices_[first + k + 1], centroid_[b], d) - o;
+      twice += cross(p, q);
+    }
+    inverted[b] = !(twice > 0);
+  }, 64);
+  const auto it = std::find(inverted.begin(), inverted.end(), 1);
+  return it == inverted.end() ? -1 : static_cast<BlockId>(it - inverted.begin());
 }
 
 double World::deepest_penetration() const {

@@ -203,6 +203,7 @@ class World {
   bool check_contacts();          // open-close decision; true when a contact changed
   double largest_step_displacement() const;
   double deepest_penetration() const;
+  BlockId first_inverted_block() const;
   void update(double dt);         // move vertices, stresses, velocities, contacts; advance time
 
   Controls controls_;

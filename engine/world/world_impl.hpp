@@ -18,7 +18,7 @@ using Clock = std::chrono::steady_clock;
 inline double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
 
 // Why a step attempt was rejected (the step is then redone with a smaller Δt).
-enum class Rejection : int { None, OpenCloseUnsettled, DisplacementTooLarge, PenetrationTooDeep, SolverNotConverged };
+enum class Rejection : int { None, OpenCloseUnsettled, DisplacementTooLarge, PenetrationTooDeep, SolverNotConverged, BlockInverted };
 
 inline const char* describe(Rejection r) {
   switch (r) {
@@ -27,6 +27,7 @@ inline const char* describe(Rejection r) {
     case Rejection::DisplacementTooLarge: return "a vertex moved more than the g2 bound in one step";
     case Rejection::PenetrationTooDeep: return "a contact penetrated deeper than the g2 bound";
     case Rejection::SolverNotConverged: return "the linear solver did not converge";
+    case Rejection::BlockInverted: return "a block would turn inside out (its area would become zero or negative)";
   }
   return "?";
 }
@@ -60,6 +61,7 @@ struct World::Impl {
   double detected_range = 0;
   long detections = 0;
   Rejection last_rejection = Rejection::None;
+  BlockId inverted_block = -1;  // the first block the last rejected attempt would have turned inside out
 
   int open_close_iterations = 0, cg_iterations = 0;
   double t_assemble = 0, t_solve = 0, t_check = 0;

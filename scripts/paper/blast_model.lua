@@ -23,7 +23,8 @@ blast_model.controls = { plane = "strain", g0 = 100e9, g1 = 1e-5, g2 = 0.005, gg
 blast_model.chamber = { -4, -2, 4, 2 }   -- m: 8 m wide, 4 m high, roof at y = 2
 
 -- opts: size (m, default 100), spacing (m, default 2), controls (table of
--- extra/overriding model controls, optional).
+-- extra/overriding model controls, optional), min_area (m^2: slivers below it
+-- are merged into a neighbour; default none).
 function blast_model.build(opts)
   opts = opts or {}
   local size = opts.size or 100
@@ -40,7 +41,7 @@ function blast_model.build(opts)
   local chamber = m:hole{ box = blast_model.chamber, joint = joint }
   m:joint_set{ dip = 45, spacing = spacing, joint = joint }
   m:joint_set{ dip = 135, spacing = spacing, joint = joint }
-  local blocks, info = m:generate()
+  local blocks, info = m:generate(opts.min_area and { min_area = opts.min_area } or nil)
   return { m = m, rock = rock, joint = joint, chamber = chamber, blocks = blocks, info = info,
            wall = chamber:edges(), outer = m:edges{ boundary = "domain" }, h = h, size = size }
 end
