@@ -8,7 +8,7 @@
 --          strength. Reports block counts, the chamber wall, and which blocks
 --          hold the monitor points MP1 (0, 8), MP2 (-6, 5) and MP3 (near the
 --          top boundary above the centre). No run.
--- Run:     build/dda run scripts/paper/blast_geometry.lua [--set size=120] [--set check_step=true]
+-- Run:     build/dda run scripts/paper/blast_geometry.lua [--set size=120] [--set check_step=false]
 -- Writes:  out/blast_geometry.csv: size, blocks, area, chamber_edges,
 --          chamber_wall_length, boundary_edges, and the monitor points' blocks.
 
@@ -16,10 +16,8 @@ local dda = require "dda"
 
 local size = dda.param("size", 100)         -- m, side of the square model
 local spacing = dda.param("spacing", 2)     -- m
--- One time step validates the model (no overlapping blocks). Off by default:
--- at rest, with zero-tension joints, the engine's first open-close iteration
--- does not settle yet on the full model (reported to the engine core).
-local check_step = dda.param("check_step", false)
+-- One time step validates the model (no overlapping blocks); --set check_step=false skips it.
+local check_step = dda.param("check_step", true)
 local h = size / 2
 
 local m = dda.model{ plane = "strain", g0 = 100e9, g1 = 1e-5, g2 = 0.005, gg = 1 }
