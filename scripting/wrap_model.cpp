@@ -258,18 +258,12 @@ int m_stats(lua_State* L) {
 int m_totals(lua_State* L) {
   const Totals& t = check_model(L, 1, "m:totals").totals();
   lua_createtable(L, 0, 6);
-  lua_pushinteger(L, t.steps);
-  lua_setfield(L, -2, "steps");
-  lua_pushinteger(L, t.step_cuts);
-  lua_setfield(L, -2, "step_cuts");
-  lua_pushinteger(L, t.open_close_iterations);
-  lua_setfield(L, -2, "open_close_iterations");
-  lua_pushinteger(L, t.cg_iterations);
-  lua_setfield(L, -2, "cg_iterations");
-  lua_pushnumber(L, t.wall_seconds);
-  lua_setfield(L, -2, "wall_seconds");
-  lua_pushnumber(L, t.wall_seconds > 0 ? t.steps / t.wall_seconds : 0);
-  lua_setfield(L, -2, "steps_per_second");
+  set_integer_field(L, "steps", t.steps);
+  set_integer_field(L, "step_cuts", t.step_cuts);
+  set_integer_field(L, "open_close_iterations", t.open_close_iterations);
+  set_integer_field(L, "cg_iterations", t.cg_iterations);
+  set_number_field(L, "wall_seconds", t.wall_seconds);
+  set_number_field(L, "steps_per_second", t.wall_seconds > 0 ? t.steps / t.wall_seconds : 0);
   return 1;
 }
 int m_hash(lua_State* L) {

@@ -174,10 +174,14 @@ constexpr double kSearchFactor = 2.0;
 constexpr double kRedetectRotation = 0.005;  // rad, well inside the facing-edge angle tolerance
 }  // namespace
 
+// Search range: 2.5 × the largest allowed step displacement (Shi's choice),
+// so any contact that can close during the step is in the list.
+double World::contact_range() const { return 2.5 * controls_.g2 * half_height_; }
+
 bool World::contact_list_is_stale() const {
   const Impl& m = *impl_;
   if (m.detected_vertices.size() != vertices_.size()) return true;
-  const double range = 2.5 * controls_.g2 * half_height_;
+  const double range = contact_range();
   const double allowed = 0.5 * (kSearchFactor - 1.0) * range;
   const double moved = parallel_max<double>(vertices_.size(), 0.0, [&](std::size_t v) {
     return (vertices_[v] - m.detected_vertices[v]).squaredNorm();
@@ -198,9 +202,7 @@ void World::detect_contacts() {
     }, 256);
     return;
   }
-  // Search range: 2.5 × the largest allowed step displacement (Shi's
-  // choice), so any contact that can close during the step is in the list.
-  const double range = 2.5 * controls_.g2 * half_height_;
+  const double range = contact_range();
   NarrowPhaseSettings settings;
   settings.range = kSearchFactor * range;
   const auto pairs = find_candidate_pairs(polys, settings.range);

@@ -196,6 +196,7 @@ class World {
   void resolve_controls();        // validate controls, fill in automatic g0 and g1
   void detect_contacts();         // broad + narrow phase, carry states, linearise, matrix shape
   bool contact_list_is_stale() const;
+  double contact_range() const;
   int solve_step(double dt);      // loop { assemble, solve, check contacts }; 0 or a rejection
   void assemble_block_terms(double dt);  // elastic, inertia, stress, gravity per block
   void assemble_point_terms(double dt);  // loads, fixed points, targets, boundaries at t + Δt
