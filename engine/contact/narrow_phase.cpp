@@ -172,18 +172,26 @@ struct PairDetector {
         if (aligned_corner(a, k, b, l)) continue;
         struct Option { int vblock, vertex, eblock, edge; double score; };
         Option best{-1, -1, -1, -1, -kWedgeSlack};
-        auto consider = [&](int x, int vx, int y, int ey) {
+        // Edge ey of y ends at y's vertex vy; other_ey is y's other edge there.
+        auto consider = [&](int x, int vx, int y, int ey, int other_ey) {
           if (!is_convex(x, vx)) return;
           const Edge& e = edge_of(y, ey);
           const double gap = (blocks.vertex(x, vx) - e.p0).dot(e.n);
           if (gap < -std::min(s.range, 0.25 * e.length)) return;
+          // Behind the line of ey but clearly outside y past its other edge:
+          // the vertex is beside y's corner, not in it, and the negative gap
+          // is a false penetration (a search range wider than the blocks
+          // pairs vertices up to a metre apart across a chamber corner).
+          const Edge& other = edge_of(y, other_ey);
+          const double other_gap = (blocks.vertex(x, vx) - other.p0).dot(other.n);
+          if (gap < 0 && other_gap > -gap && other_gap > 1e-6 * other.length) return;
           const double score = entrance_score(wedge_of(x, vx), e);
           if (score > best.score) best = {x, vx, y, ey, score};
         };
-        consider(a, k, b, wrap(b, l - 1));
-        consider(a, k, b, l);
-        consider(b, l, a, wrap(a, k - 1));
-        consider(b, l, a, k);
+        consider(a, k, b, wrap(b, l - 1), l);
+        consider(a, k, b, l, wrap(b, l - 1));
+        consider(b, l, a, wrap(a, k - 1), k);
+        consider(b, l, a, k, wrap(a, k - 1));
         if (best.vblock >= 0) add(best.vblock, best.vertex, best.eblock, best.edge, 0.0);
       }
     }
