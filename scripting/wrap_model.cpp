@@ -14,7 +14,7 @@ namespace dda::script {
 // ---- controls -----------------------------------------------------------------------------
 
 #define DDA_CONTROL_KEYS                                                                                 \
-  "plane", "g0", "g1", "g2", "gg", "shear_ratio", "open_close_limit", "contact_tolerance",             \
+  "plane", "g0", "g1", "g2", "gg", "shear_ratio", "open_close_limit", "contact_tolerance", "contact_range",             \
       "fixed_point_factor", "gravity", "cut_factor", "max_step_cuts", "cg_tolerance", "preconditioner",   \
       "cg_max_iterations", "threads"
 
@@ -43,6 +43,7 @@ void parse_controls(const Options& o, Controls& c) {
     c.open_close_limit = static_cast<int>(n);
   }
   c.contact_tolerance = o.non_negative("contact_tolerance", c.contact_tolerance);
+  c.contact_range = o.non_negative("contact_range", c.contact_range);
   c.fixed_point_factor = o.positive("fixed_point_factor", c.fixed_point_factor);
   if (o.has("gravity")) c.gravity = o.point("gravity");
   if (o.has("cut_factor")) {
@@ -97,6 +98,7 @@ void push_controls(lua_State* L, const Controls& c) {
   num("shear_ratio", c.shear_ratio);
   integer("open_close_limit", c.open_close_limit);
   num("contact_tolerance", c.contact_tolerance);
+  num("contact_range", c.contact_range);
   num("fixed_point_factor", c.fixed_point_factor);
   push_point(L, c.gravity);
   lua_setfield(L, -2, "gravity");

@@ -50,12 +50,11 @@ ContactKinematics contact_kinematics(const BlockPolygons& blocks, std::span<cons
   return k;
 }
 
-bool update_contact_state(Contact& c, ContactIterate& it, const JointMaterial& joint, const ContactSprings& k, double dn,
+bool update_contact_state(Contact& c, ContactIterate& it, const JointMaterial& joint, double tan_phi, const ContactSprings& k, double dn,
                           double ds, double ds_step) {
   const ContactState old_state = c.state;
   const bool old_intact = c.intact;
   const std::int8_t old_sign = c.slide_sign;
-  const double tan_phi = std::tan(deg_to_rad(joint.friction_deg));
   const double normal = k.kn * dn;  // compression positive
   const double shear = k.ks * ds;
   auto slide_towards = [&](double direction) {

@@ -41,7 +41,7 @@ struct ContactSprings {
 // when the state (or the intact flag, or the sliding direction) changed.
 // `dn`, `ds` are the current penetration and shear; `ds_step` the shear
 // displacement within this step (sliding direction).
-bool update_contact_state(Contact& c, ContactIterate& it, const JointMaterial& joint, const ContactSprings& k, double dn,
+bool update_contact_state(Contact& c, ContactIterate& it, const JointMaterial& joint, double tan_phi, const ContactSprings& k, double dn,
                           double ds, double ds_step);
 
 }  // namespace dda

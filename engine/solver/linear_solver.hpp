@@ -50,6 +50,7 @@ class BlockJacobi final : public Preconditioner {
   void apply(const VecX& r, VecX& z) const override;
 
  private:
+  std::vector<Mat6> diagonal_;  // the blocks inverse_ was made from (NaN: none yet)
   std::vector<Mat6> inverse_;
 };
 

@@ -34,10 +34,20 @@ StepStats World::step() {
     for (;;) {
       const Rejection r = static_cast<Rejection>(solve_step(dt_));
       if (r == Rejection::None) break;
+      if (r == Rejection::BeyondContactRange && controls_.contact_range == 0) {
+        // Widen the automatic range past this step's motion, search again and
+        // redo the step with the same Δt (the range only widens: this ends
+        // at Shi's range, which the g2 bound already guarantees).
+        auto_range_ = std::max(2.0 * auto_range_, 2.5 * 1.5 * m.largest_displacement);
+        contacts_ = contacts_at_start;
+        const auto t1 = Clock::now();
+        detect_contacts();
+        stats.t_detect += seconds_since(t1);
+        continue;
+      }
+      stats.cut_reason = msg(describe(r), r == Rejection::BlockInverted ? msg(" (block ", m.inverted_block, ")") : std::string());
       if (stats.step_cuts == controls_.max_step_cuts)
-        throw Error(msg("step ", steps_ + 1, " at t = ", time_, " s: ", describe(r),
-                        r == Rejection::BlockInverted ? msg(" (block ", m.inverted_block, ")") : std::string(),
-                        " even after ", stats.step_cuts,
+        throw Error(msg("step ", steps_ + 1, " at t = ", time_, " s: ", stats.cut_reason, " even after ", stats.step_cuts,
                         " cuts of the time step (down to ", dt_, " s). ",
                         r == Rejection::PenetrationTooDeep ? "Raise g0 (contact stiffness) or g2." : "Check loads, g0 and g2."));
       ++stats.step_cuts;
@@ -105,6 +115,15 @@ void World::prepare_first_step() {
   half_height_ = 0;
   half_height_ = half_height();
   if (!(half_height_ > 0)) throw Error("the model has no height (all vertices on one horizontal line)");
+  std::vector<double> edges;
+  edges.reserve(vertices_.size());
+  for (std::size_t b = 0; b < block_count(); ++b)
+    for (int v = vertex_start_[b]; v < vertex_start_[b + 1]; ++v) {
+      const int next = v + 1 < vertex_start_[b + 1] ? v + 1 : vertex_start_[b];
+      edges.push_back((vertices_[next] - vertices_[v]).norm());
+    }
+  std::nth_element(edges.begin(), edges.begin() + edges.size() / 2, edges.end());
+  auto_range_ = 0.1 * edges[edges.size() / 2];
   prepared_ = true;
 }
 
@@ -121,6 +140,8 @@ void World::resolve_controls() {
   require(c.open_close_limit >= 1, msg("open-close limit must be at least 1, got ", c.open_close_limit));
   require(std::isfinite(c.contact_tolerance) && c.contact_tolerance >= 0,
           msg("contact tolerance must be zero or positive, got ", c.contact_tolerance));
+  require(std::isfinite(c.contact_range) && c.contact_range >= 0,
+          msg("contact range must be zero (automatic) or positive, got ", c.contact_range));
   require(std::isfinite(c.fixed_point_factor) && c.fixed_point_factor > 0,
           msg("fixed-point factor must be positive, got ", c.fixed_point_factor));
   require(c.gravity.allFinite(), "gravity is not finite");
@@ -158,6 +179,8 @@ void World::resolve_controls() {
     m.solver.set_preconditioner(make_preconditioner(kind));
     m.preconditioner_kind = kind;
   }
+  m.tan_friction.resize(joints_.size());
+  for (std::size_t j = 0; j < joints_.size(); ++j) m.tan_friction[j] = std::tan(deg_to_rad(joints_[j].friction_deg));
   m.solver.tolerance = c.cg_tolerance;
   m.solver.max_iterations = c.cg_max_iterations > 0 ? c.cg_max_iterations : static_cast<int>(60 * block_count() + 100);
 }
@@ -176,7 +199,10 @@ constexpr double kRedetectRotation = 0.005;  // rad, well inside the facing-edge
 
 // Search range: 2.5 × the largest allowed step displacement (Shi's choice),
 // so any contact that can close during the step is in the list.
-double World::contact_range() const { return 2.5 * controls_.g2 * half_height_; }
+double World::contact_range() const {
+  if (controls_.contact_range > 0) return controls_.contact_range;
+  return std::min(2.5 * controls_.g2 * half_height_, auto_range_);
+}
 
 bool World::contact_list_is_stale() const {
   const Impl& m = *impl_;
@@ -315,7 +341,9 @@ int World::solve_step(double dt) {
     m.t_check += seconds_since(t0);
   }
   if (!settled) return static_cast<int>(Rejection::OpenCloseUnsettled);
-  if (largest_step_displacement() > controls_.g2 * half_height_) return static_cast<int>(Rejection::DisplacementTooLarge);
+  const double largest = m.largest_displacement = largest_step_displacement();
+  if (largest > controls_.g2 * half_height_) return static_cast<int>(Rejection::DisplacementTooLarge);
+  if (largest > contact_range() / 2.5) return static_cast<int>(Rejection::BeyondContactRange);
   if ((m.inverted_block = first_inverted_block()) >= 0) return static_cast<int>(Rejection::BlockInverted);
   if (deepest_penetration() > controls_.g2 * half_height_) return static_cast<int>(Rejection::PenetrationTooDeep);
   return static_cast<int>(Rejection::None);
@@ -452,7 +480,7 @@ void World::assemble_contacts() {
       } else {
         // Sliding: friction N·tanφ against the sliding direction, with N
         // from the previous iteration.
-        const double friction = std::max(0.0, m.iterate[i].normal_force) * std::tan(deg_to_rad(joints_[c.joint].friction_deg));
+        const double friction = std::max(0.0, m.iterate[i].normal_force) * m.tan_friction[c.joint];
         f -= c.slide_sign * friction * es_self;
       }
     }
@@ -464,8 +492,7 @@ bool World::check_contacts() {
   Impl& m = *impl_;
   const std::size_t nc = contacts_.size();
   const double tolerance = controls_.contact_tolerance * half_height_;
-  std::vector<char> changed(nc, 0);
-  parallel_for_each(nc, [&](std::size_t i) {
+  const int any_changed = parallel_max<int>(nc, 0, [&](std::size_t i) {
     Contact& c = contacts_[i];
     const ContactSprings springs{c.scale * m.g0, c.scale * controls_.shear_ratio * m.g0, tolerance};
     const ContactKinematics& k = m.kinematics[i];
@@ -474,15 +501,16 @@ bool World::check_contacts() {
     const double dn = k.d0 + k.en_v.dot(dv) + k.en_e.dot(de);
     const double ds_step = k.es_v.dot(dv) + k.es_e.dot(de);
     const double ds = m.iterate[i].s0 + ds_step;
-    changed[i] = update_contact_state(c, m.iterate[i], joints_[c.joint], springs, dn, ds, ds_step);
+    const bool changed = update_contact_state(c, m.iterate[i], joints_[c.joint], m.tan_friction[c.joint], springs, dn, ds, ds_step);
     c.penetration = dn;
     c.normal_force = m.iterate[i].normal_force;
     c.shear_force = c.state == ContactState::Locked ? springs.ks * ds
                     : c.state == ContactState::Sliding
-                        ? -c.slide_sign * std::max(0.0, c.normal_force) * std::tan(deg_to_rad(joints_[c.joint].friction_deg))
+                        ? -c.slide_sign * std::max(0.0, c.normal_force) * m.tan_friction[c.joint]
                         : 0.0;
-  }, 256);
-  return std::any_of(changed.begin(), changed.end(), [](char x) { return x != 0; });
+    return changed ? 1 : 0;
+  });
+  return any_changed != 0;
 }
 
 double World::largest_step_displacement() const {

@@ -40,6 +40,13 @@ struct Controls {
   // carry next to no force (the Poisson-loaded vertical joints of a wall)
   // flip state on round-off and the iteration never settles.
   double contact_tolerance = 1e-9;
+  // Contact range (m): pairs closer than this at the start of a step are
+  // contacts; a step in which a vertex moves more than range / 2.5 is cut.
+  // 0 → automatic: starts at a tenth of the median edge length (fine models
+  // then do not carry their blocks' second neighbours as contacts: wave
+  // problems move micrometres a step) and widens, redoing the step, whenever
+  // a vertex moves further, up to Shi's 2.5·g2·(half height).
+  double contact_range = 0;
   double fixed_point_factor = 100;  // fixed-point spring = factor × g0
   Vec2 gravity = Vec2::Zero();      // m/s²
   double cut_factor = 1.0 / 3.0;    // Δt multiplier when a step is redone
@@ -64,6 +71,7 @@ struct StepStats {
   int open_close_iterations = 0;
   int cg_iterations = 0;
   int step_cuts = 0;
+  std::string cut_reason;  // why the last cut was made ("" when none), with the block when one is to blame
   int contacts = 0;
   int closed_contacts = 0;
   bool contacts_searched = false;  // a full contact search ran (else the list was reused)
@@ -253,6 +261,7 @@ class World {
   long steps_ = 0;
   double dt_ = 0;
   double half_height_ = 0;
+  double auto_range_ = 0;   // the automatic contact range so far (only widens)
   bool prepared_ = false;
   StepStats last_stats_;
   std::unique_ptr<Impl> impl_;  // scratch buffers reused from step to step

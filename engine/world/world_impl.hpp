@@ -18,7 +18,7 @@ using Clock = std::chrono::steady_clock;
 inline double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
 
 // Why a step attempt was rejected (the step is then redone with a smaller Δt).
-enum class Rejection : int { None, OpenCloseUnsettled, DisplacementTooLarge, PenetrationTooDeep, SolverNotConverged, BlockInverted };
+enum class Rejection : int { None, OpenCloseUnsettled, DisplacementTooLarge, PenetrationTooDeep, SolverNotConverged, BlockInverted, BeyondContactRange };
 
 inline const char* describe(Rejection r) {
   switch (r) {
@@ -28,6 +28,7 @@ inline const char* describe(Rejection r) {
     case Rejection::PenetrationTooDeep: return "a contact penetrated deeper than the g2 bound";
     case Rejection::SolverNotConverged: return "the linear solver did not converge";
     case Rejection::BlockInverted: return "a block would turn inside out (its area would become zero or negative)";
+    case Rejection::BeyondContactRange: return "a vertex moved more than the contact range allows in one step (range / 2.5)";
   }
   return "?";
 }
@@ -46,6 +47,7 @@ struct World::Impl {
   std::vector<Mat6> own_k;  // block terms of the diagonal (elastic, inertia, fixed points)
   std::vector<Vec6> own_f;  // block terms of the right-hand side
   std::vector<Mat3> elastic;  // per rock material
+  std::vector<double> tan_friction;  // tan φ per joint material (the contact law needs it per contact)
 
   // Per contact, parallel to World::contacts_.
   std::vector<ContactKinematics> kinematics;
@@ -61,6 +63,7 @@ struct World::Impl {
   double detected_range = 0;
   long detections = 0;
   Rejection last_rejection = Rejection::None;
+  double largest_displacement = 0;  // of the last solve's vertices (widens the automatic contact range)
   BlockId inverted_block = -1;  // the first block the last rejected attempt would have turned inside out
 
   int open_close_iterations = 0, cg_iterations = 0;

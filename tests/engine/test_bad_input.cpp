@@ -113,6 +113,7 @@ TEST(BadInput, StepThatWouldTurnABlockInsideOutIsRefusedNamingTheBlock) {
   w.set_target_displacement(t, Vec2(0, -0.5));
   w.controls().g1 = 1e-3;
   w.controls().g2 = 1000;  // no displacement bound: only the inversion check can refuse the step
+  w.controls().contact_range = 1000;  // (nor the contact range)
   w.controls().max_step_cuts = 3;
   EXPECT_MESSAGE(w.step(), "would turn inside out (its area would become zero or negative) (block 1)");
   EXPECT_GT(w.block_area(sliver), 0);
