@@ -15,7 +15,7 @@ namespace dda::script {
 
 #define DDA_CONTROL_KEYS                                                                                 \
   "plane", "g0", "g1", "g2", "gg", "shear_ratio", "open_close_limit", "contact_tolerance", "contact_range",             \
-      "fixed_point_factor", "gravity", "cut_factor", "max_step_cuts", "cg_tolerance", "preconditioner",   \
+      "fixed_point_factor", "gravity", "cut_factor", "max_step_cuts", "cg_tolerance", "cg_open_close_tolerance", "preconditioner",   \
       "cg_max_iterations", "threads"
 
 void parse_controls(const Options& o, Controls& c) {
@@ -56,6 +56,7 @@ void parse_controls(const Options& o, Controls& c) {
     c.max_step_cuts = static_cast<int>(n);
   }
   c.cg_tolerance = o.positive("cg_tolerance", c.cg_tolerance);
+  c.cg_open_close_tolerance = o.positive("cg_open_close_tolerance", c.cg_open_close_tolerance);
   if (o.has("preconditioner")) {
     const std::string p = o.string("preconditioner");
     if (p == "auto")
@@ -105,6 +106,7 @@ void push_controls(lua_State* L, const Controls& c) {
   num("cut_factor", c.cut_factor);
   integer("max_step_cuts", c.max_step_cuts);
   num("cg_tolerance", c.cg_tolerance);
+  num("cg_open_close_tolerance", c.cg_open_close_tolerance);
   lua_pushstring(L, c.preconditioner == Preconditioning::Auto          ? "auto"
                     : c.preconditioner == Preconditioning::BlockJacobi ? "block_jacobi"
                                                                        : "multigrid");

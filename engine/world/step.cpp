@@ -148,6 +148,8 @@ void World::resolve_controls() {
   require(c.cut_factor > 0 && c.cut_factor < 1, msg("cut factor must lie in (0, 1), got ", c.cut_factor));
   require(c.max_step_cuts >= 0, "max step cuts must be zero or positive");
   require(std::isfinite(c.cg_tolerance) && c.cg_tolerance > 0, msg("CG tolerance must be positive, got ", c.cg_tolerance));
+  require(std::isfinite(c.cg_open_close_tolerance) && c.cg_open_close_tolerance > 0,
+          msg("open-close CG tolerance must be positive, got ", c.cg_open_close_tolerance));
   require(c.threads >= 0, msg("threads must be zero (all cores) or positive, got ", c.threads));
 
   for (int r = 0; r < rock_material_count(); ++r) validate(rocks_[r], msg("rock material ", r));
@@ -181,7 +183,6 @@ void World::resolve_controls() {
   }
   m.tan_friction.resize(joints_.size());
   for (std::size_t j = 0; j < joints_.size(); ++j) m.tan_friction[j] = std::tan(deg_to_rad(joints_[j].friction_deg));
-  m.solver.tolerance = c.cg_tolerance;
   m.solver.max_iterations = c.cg_max_iterations > 0 ? c.cg_max_iterations : static_cast<int>(60 * block_count() + 100);
 }
 
@@ -312,9 +313,22 @@ int World::solve_step(double dt) {
   m.solution.resize(6 * n);
   for (int b = 0; b < n; ++b) m.solution.segment<6>(6 * b) = last_displacement_[b];
 
+  // While contact states still change, a solve only has to be good enough to
+  // decide them: solve to the looser tolerance, and once the states hold,
+  // tighten to cg_tolerance (from where the loose solve got) and check again.
+  // The tightening pass does not count against the open-close limit. It costs
+  // an assembly and a check, so it pays only where solves are long (walls:
+  // hundreds of iterations); wave problems (a few iterations) solve tightly.
+  constexpr double kLooseAboveIterations = 30;  // CG iterations per solve in the last step
+  const double tight = controls_.cg_tolerance;
+  const bool long_solves = last_stats_.open_close_iterations > 0 &&
+                           last_stats_.cg_iterations > kLooseAboveIterations * last_stats_.open_close_iterations;
+  const double loose = long_solves ? std::max(tight, controls_.cg_open_close_tolerance) : tight;
   bool settled = false;
+  bool tightening = false;
   for (int it = 0; it < controls_.open_close_limit && !settled; ++it) {
     ++m.open_close_iterations;
+    m.solver.tolerance = tightening ? tight : loose;
     t0 = Clock::now();
     assemble_contacts();
     m.t_assemble += seconds_since(t0);
@@ -337,8 +351,20 @@ int World::solve_step(double dt) {
     if (!report.converged) return static_cast<int>(Rejection::SolverNotConverged);
 
     t0 = Clock::now();
-    settled = !check_contacts();
+    const bool changed = check_contacts();
     m.t_check += seconds_since(t0);
+    // (Friction on sliding contacts uses the normal force of the solve
+    // before, as in Shi's iteration: after a tightening pass that is the
+    // loose solve with the same states, a smaller lag than after a solve
+    // whose states then changed.)
+    if (changed) {
+      tightening = false;
+    } else if (m.solver.tolerance == tight) {
+      settled = true;
+    } else {
+      tightening = true;
+      --it;  // the tightening pass is free
+    }
   }
   if (!settled) return static_cast<int>(Rejection::OpenCloseUnsettled);
   const double largest = m.largest_displacement = largest_step_displacement();

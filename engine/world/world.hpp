@@ -51,7 +51,11 @@ struct Controls {
   Vec2 gravity = Vec2::Zero();      // m/s²
   double cut_factor = 1.0 / 3.0;    // Δt multiplier when a step is redone
   int max_step_cuts = 20;           // cuts in one step before giving up (error)
-  double cg_tolerance = 1e-10;      // PCG relative residual
+  double cg_tolerance = 1e-10;      // PCG relative residual of the accepted solution
+  // PCG relative residual while contact states still change, in steps after
+  // one whose solves took over 30 iterations (the final solve of a step is
+  // always tightened to cg_tolerance); = cg_tolerance: off.
+  double cg_open_close_tolerance = 1e-4;
   Preconditioning preconditioner = Preconditioning::Auto;
   int cg_max_iterations = 0;        // 0 → 10 × unknowns + 100
   int threads = 0;                  // 0 → every core
