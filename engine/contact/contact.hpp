@@ -44,6 +44,31 @@ struct Contact {
   double penetration = 0;   // m, positive when the vertex is inside the edge's block
 };
 
+// What the open-close iteration changes in a contact: carried over when the
+// contact list is searched again, kept at the start of a step for a redo
+// (a third of a whole Contact: memory counts on models of 10^5 blocks).
+struct ContactIterationState {
+  double ref_param, normal_force, shear_force, penetration;
+  ContactState state;
+  bool intact, ref_valid;
+  std::int8_t slide_sign;
+};
+
+inline ContactIterationState iteration_state(const Contact& c) {
+  return {c.ref_param, c.normal_force, c.shear_force, c.penetration, c.state, c.intact, c.ref_valid, c.slide_sign};
+}
+
+inline void set_iteration_state(Contact& c, const ContactIterationState& s) {
+  c.ref_param = s.ref_param;
+  c.normal_force = s.normal_force;
+  c.shear_force = s.shear_force;
+  c.penetration = s.penetration;
+  c.state = s.state;
+  c.intact = s.intact;
+  c.ref_valid = s.ref_valid;
+  c.slide_sign = s.slide_sign;
+}
+
 inline bool same_identity(const Contact& a, const Contact& b) {
   return a.vblock == b.vblock && a.vertex == b.vertex && a.eblock == b.eblock && a.edge == b.edge;
 }

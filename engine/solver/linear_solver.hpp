@@ -3,6 +3,7 @@
 // operator, tolerance, iteration limit, warm start from the given x, an
 // optional monitor, and a report that says when the solve failed instead of
 // carrying on. A distributed backend can slot in behind the same interface.
+#include <cstdint>
 #include <functional>
 #include <memory>
 #include <span>
@@ -50,7 +51,7 @@ class BlockJacobi final : public Preconditioner {
   void apply(const VecX& r, VecX& z) const override;
 
  private:
-  std::vector<Mat6> diagonal_;  // the blocks inverse_ was made from (NaN: none yet)
+  std::vector<std::uint64_t> diagonal_hash_;  // of the blocks inverse_ was made from
   std::vector<Mat6> inverse_;
 };
 

@@ -2,7 +2,8 @@
 #include <Eigen/SparseCholesky>
 #include <algorithm>
 #include <cmath>
-#include <limits>
+#include <cstdint>
+#include <cstring>
 
 #include "core/error.hpp"
 #include "core/parallel.hpp"
@@ -53,19 +54,42 @@ bool invert_spd6(const Mat6& a, Mat6& inverse) {
   return true;
 }
 
+namespace {
+// FNV-1a over the bits of the 36 entries.
+std::uint64_t hash_of(const Mat6& m) {
+  std::uint64_t h = 1469598103934665603ull;
+  for (int k = 0; k < 36; ++k) {
+    std::uint64_t bits;
+    std::memcpy(&bits, m.data() + k, sizeof bits);
+    h = (h ^ bits) * 1099511628211ull;
+  }
+  return h;
+}
+}  // namespace
+
 void BlockJacobi::setup(const BlockSparseMatrix& a) {
   // Between the open-close iterations of a step only the rows of blocks whose
   // contacts changed state get new diagonal blocks: re-invert just those (the
   // comparison costs a fraction of the 6x6 Cholesky and leaves the same bits).
+  // A 64-bit hash of each block stands for it (a copy would cost 288 bytes a
+  // block): a collision would only leave a stale, still SPD, preconditioner
+  // row, which slows the CG a little but cannot change what it converges to.
   const std::size_t n = a.rows();
-  if (diagonal_.size() != n) {
-    diagonal_.assign(n, Mat6::Constant(std::numeric_limits<double>::quiet_NaN()));
+  if (diagonal_hash_.size() != n) {
+    diagonal_hash_.assign(n, 0);
     inverse_.resize(n);
+    parallel_for_each(n, [&](std::size_t i) {
+      const Mat6& d = a.value(a.diagonal(static_cast<int>(i)));
+      diagonal_hash_[i] = hash_of(d);
+      invert_spd6(d, inverse_[i]);
+    });
+    return;
   }
   parallel_for_each(n, [&](std::size_t i) {
     const Mat6& d = a.value(a.diagonal(static_cast<int>(i)));
-    if (d == diagonal_[i]) return;
-    diagonal_[i] = d;
+    const std::uint64_t h = hash_of(d);
+    if (h == diagonal_hash_[i]) return;
+    diagonal_hash_[i] = h;
     invert_spd6(d, inverse_[i]);
   });
 }

@@ -28,7 +28,7 @@ StepStats World::step() {
 
     // Solve; when the step is rejected, restore the contact states, cut Δt
     // and redo it (ControlStep).
-    const std::vector<Contact> contacts_at_start = contacts_;
+    save_contact_states();
     m.open_close_iterations = m.cg_iterations = 0;
     m.t_assemble = m.t_solve = m.t_check = 0;
     for (;;) {
@@ -39,10 +39,11 @@ StepStats World::step() {
         // redo the step with the same Δt (the range only widens: this ends
         // at Shi's range, which the g2 bound already guarantees).
         auto_range_ = std::max(2.0 * auto_range_, 2.5 * 1.5 * m.largest_displacement);
-        contacts_ = contacts_at_start;
+        restore_contact_states();
         const auto t1 = Clock::now();
         detect_contacts();
         stats.t_detect += seconds_since(t1);
+        save_contact_states();
         continue;
       }
       stats.cut_reason = msg(describe(r), r == Rejection::BlockInverted ? msg(" (block ", m.inverted_block, ")") : std::string());
@@ -51,7 +52,7 @@ StepStats World::step() {
                         " cuts of the time step (down to ", dt_, " s). ",
                         r == Rejection::PenetrationTooDeep ? "Raise g0 (contact stiffness) or g2." : "Check loads, g0 and g2."));
       ++stats.step_cuts;
-      contacts_ = contacts_at_start;
+      restore_contact_states();
       dt_ *= controls_.cut_factor;
     }
     stats.open_close_iterations = m.open_close_iterations;
@@ -74,6 +75,18 @@ StepStats World::step() {
   stats.t_total = seconds_since(t_start);
   last_stats_ = stats;
   return stats;
+}
+
+// The contacts' iteration state at the start of a step, for a redo.
+void World::save_contact_states() {
+  Impl& m = *impl_;
+  m.saved_states.resize(contacts_.size());
+  parallel_for_each(contacts_.size(), [&](std::size_t i) { m.saved_states[i] = iteration_state(contacts_[i]); }, 1024);
+}
+
+void World::restore_contact_states() {
+  Impl& m = *impl_;
+  parallel_for_each(contacts_.size(), [&](std::size_t i) { set_iteration_state(contacts_[i], m.saved_states[i]); }, 1024);
 }
 
 // ---- Stage: first-step checks ----------------------------------------------
@@ -250,16 +263,7 @@ void World::detect_contacts() {
     const auto it = std::lower_bound(order.begin(), order.end(), c,
                                      [&](int x, const Contact& key) { return identity_less(contacts_[x], key); });
     const bool known = it != order.end() && same_identity(contacts_[*it], c);
-    if (known) {
-      const Contact& old = contacts_[*it];
-      c.state = old.state;
-      c.intact = old.intact;
-      c.ref_param = old.ref_param;
-      c.ref_valid = old.ref_valid;
-      c.slide_sign = old.slide_sign;
-      c.normal_force = old.normal_force;
-      c.shear_force = old.shear_force;
-    }
+    if (known) set_iteration_state(c, iteration_state(contacts_[*it]));  // (penetration: set below)
     m.kinematics[i] = contact_kinematics(polys, centroid_, c);
     if (!known) {
       const bool touching = m.kinematics[i].d0 >= -1e-9 * m.kinematics[i].edge_length;

@@ -208,6 +208,8 @@ class World {
   void resolve_controls();        // validate controls, fill in automatic g0 and g1
   void detect_contacts();         // broad + narrow phase, carry states, linearise, matrix shape
   bool contact_list_is_stale() const;
+  void save_contact_states();     // the contacts' iteration state at the start of a step
+  void restore_contact_states();  // back to it, for a redo
   double contact_range() const;
   int solve_step(double dt);      // loop { assemble, solve, check contacts }; 0 or a rejection
   void assemble_block_terms(double dt);  // elastic, inertia, stress, gravity per block
