@@ -498,14 +498,21 @@ void World::assemble_contacts() {
       const Vec6& es_other = is_vertex_block ? k.es_e : k.es_v;
       Mat6& off = m.matrix.value(is_vertex_block ? m.entry_ve[i] : m.entry_ev[i]);
       const double kn = c.scale * kn_full, ks = c.scale * ks_full;
-      // Normal spring on dn = d0 + en·D.
-      diag.noalias() += kn * en_self * en_self.transpose();
-      off.noalias() += kn * en_self * en_other.transpose();
+      // Normal spring on dn = d0 + en·D (and, locked, shear spring on
+      // ds = s0 + es·D): kn·en enᵀ (+ ks·es esᵀ), written column by column
+      // (each a 6-vector update: this is the hottest loop of wave problems).
+      const Vec6 kn_en = kn * en_self;
+      for (int j = 0; j < 6; ++j) {
+        diag.col(j) += en_self[j] * kn_en;
+        off.col(j) += en_other[j] * kn_en;
+      }
       f -= kn * k.d0 * en_self;
       if (c.state == ContactState::Locked) {
-        // Shear spring on ds = s0 + es·D.
-        diag.noalias() += ks * es_self * es_self.transpose();
-        off.noalias() += ks * es_self * es_other.transpose();
+        const Vec6 ks_es = ks * es_self;
+        for (int j = 0; j < 6; ++j) {
+          diag.col(j) += es_self[j] * ks_es;
+          off.col(j) += es_other[j] * ks_es;
+        }
         f -= ks * m.iterate[i].s0 * es_self;
       } else {
         // Sliding: friction N·tanφ against the sliding direction, with N

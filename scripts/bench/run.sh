@@ -2,12 +2,13 @@
 # The benchmark table of issue 8: every scene with 1 and 2 threads, one dda
 # process per row (so each row's peak memory is its own), saved as CSV in
 # bench/results/ with the machine's description.
-#   scripts/bench/run.sh            # the default table (a few minutes)
+#   scripts/bench/run.sh            # the default table (about 10 minutes)
 #   SCENES="wall:10 bar" scripts/bench/run.sh
+#   SCENES="wall:200:3" scripts/bench/run.sh   # a third field: timed steps (default 10)
 set -euo pipefail
 cd "$(dirname "$0")/../.."
 dda=${DDA:-build/dda}
-scenes=${SCENES:-"wall:10 wall:20 wall:40 blast:2 bar"}
+scenes=${SCENES:-"wall:10 wall:20 wall:40 wall:100:5 blast:2 blast:1 blast:0.5 blast:0.25:5 bar"}
 mkdir -p bench/results
 out="bench/results/$(date -u +%Y%m%d-%H%M%S)-$(hostname -s).csv"
 {
@@ -15,11 +16,11 @@ out="bench/results/$(date -u +%Y%m%d-%H%M%S)-$(hostname -s).csv"
   echo "scene,threads,blocks,contacts,steps,ms_per_step,block_steps_per_s,oc_per_step,cg_per_step,cuts,detect_share,assemble_share,solve_share,update_share,other_share,peak_rss_mb"
 } > "$out"
 for s in $scenes; do
-  name=${s%%:*}; arg=${s#*:}
+  IFS=: read -r name arg steps <<< "$s"
   for t in 1 2; do
     case $name in
-      wall) "$dda" run scripts/bench/bench.lua --quiet --out /tmp --set scene=wall --set n="$arg" --set threads=$t --set csv="$out" ;;
-      blast) "$dda" run scripts/bench/bench.lua --quiet --out /tmp --set scene=blast --set h="$arg" --set threads=$t --set csv="$out" ;;
+      wall) "$dda" run scripts/bench/bench.lua --quiet --out /tmp --set scene=wall --set n="$arg" --set steps="${steps:-10}" --set threads=$t --set csv="$out" ;;
+      blast) "$dda" run scripts/bench/bench.lua --quiet --out /tmp --set scene=blast --set h="$arg" --set steps="${steps:-10}" --set threads=$t --set csv="$out" ;;
       bar) "$dda" run scripts/bench/bench.lua --quiet --out /tmp --set scene=bar --set steps=100 --set threads=$t --set csv="$out" ;;
     esac
   done
