@@ -334,7 +334,7 @@ int World::solve_step(double dt) {
     ++m.open_close_iterations;
     m.solver.tolerance = tightening ? tight : loose;
     t0 = Clock::now();
-    assemble_contacts();
+    assemble_contacts(/*all_rows=*/it == 0 && !tightening);
     m.t_assemble += seconds_since(t0);
 
     t0 = Clock::now();
@@ -473,7 +473,7 @@ void World::assemble_point_terms(double dt) {
   }
 }
 
-void World::assemble_contacts() {
+void World::assemble_contacts(bool all_rows) {
   Impl& m = *impl_;
   const int n = static_cast<int>(block_count());
   const double kn_full = m.g0, ks_full = controls_.shear_ratio * m.g0;
@@ -482,9 +482,16 @@ void World::assemble_contacts() {
   // order: no races, and the same sums whatever the thread count.
   parallel_for_each(n, [&](std::size_t bi) {
     const int b = static_cast<int>(bi);
-    for (int e = m.matrix.row_begin(b); e < m.matrix.row_end(b); ++e) m.matrix.value(e).setZero();
+    // A row none of whose contacts changed state since the last assembly of
+    // this step keeps its matrix blocks (they would come out the same to the
+    // bit); its right-hand side is redone (friction follows the latest N).
+    bool matrix_too = all_rows;
+    for (int r = m.row_start[b]; r < m.row_start[b + 1] && !matrix_too; ++r) matrix_too = m.contact_changed[m.row_contacts[r]];
+    if (matrix_too) {
+      for (int e = m.matrix.row_begin(b); e < m.matrix.row_end(b); ++e) m.matrix.value(e).setZero();
+      m.matrix.value(m.matrix.diagonal(b)) = m.own_k[b];
+    }
     Mat6& diag = m.matrix.value(m.matrix.diagonal(b));
-    diag = m.own_k[b];
     Vec6 f = m.own_f[b];
     for (int r = m.row_start[b]; r < m.row_start[b + 1]; ++r) {
       const int i = m.row_contacts[r];
@@ -501,17 +508,21 @@ void World::assemble_contacts() {
       // Normal spring on dn = d0 + en·D (and, locked, shear spring on
       // ds = s0 + es·D): kn·en enᵀ (+ ks·es esᵀ), written column by column
       // (each a 6-vector update: this is the hottest loop of wave problems).
-      const Vec6 kn_en = kn * en_self;
-      for (int j = 0; j < 6; ++j) {
-        diag.col(j) += en_self[j] * kn_en;
-        off.col(j) += en_other[j] * kn_en;
+      if (matrix_too) {
+        const Vec6 kn_en = kn * en_self;
+        for (int j = 0; j < 6; ++j) {
+          diag.col(j) += en_self[j] * kn_en;
+          off.col(j) += en_other[j] * kn_en;
+        }
       }
       f -= kn * k.d0 * en_self;
       if (c.state == ContactState::Locked) {
-        const Vec6 ks_es = ks * es_self;
-        for (int j = 0; j < 6; ++j) {
-          diag.col(j) += es_self[j] * ks_es;
-          off.col(j) += es_other[j] * ks_es;
+        if (matrix_too) {
+          const Vec6 ks_es = ks * es_self;
+          for (int j = 0; j < 6; ++j) {
+            diag.col(j) += es_self[j] * ks_es;
+            off.col(j) += es_other[j] * ks_es;
+          }
         }
         f -= ks * m.iterate[i].s0 * es_self;
       } else {
@@ -529,6 +540,7 @@ bool World::check_contacts() {
   Impl& m = *impl_;
   const std::size_t nc = contacts_.size();
   const double tolerance = controls_.contact_tolerance * half_height_;
+  m.contact_changed.resize(nc);
   const int any_changed = parallel_max<int>(nc, 0, [&](std::size_t i) {
     Contact& c = contacts_[i];
     const ContactSprings springs{c.scale * m.g0, c.scale * controls_.shear_ratio * m.g0, tolerance};
@@ -539,6 +551,7 @@ bool World::check_contacts() {
     const double ds_step = k.es_v.dot(dv) + k.es_e.dot(de);
     const double ds = m.iterate[i].s0 + ds_step;
     const bool changed = update_contact_state(c, m.iterate[i], joints_[c.joint], m.tan_friction[c.joint], springs, dn, ds, ds_step);
+    m.contact_changed[i] = changed;
     c.penetration = dn;
     c.normal_force = m.iterate[i].normal_force;
     c.shear_force = c.state == ContactState::Locked ? springs.ks * ds

@@ -214,7 +214,7 @@ class World {
   int solve_step(double dt);      // loop { assemble, solve, check contacts }; 0 or a rejection
   void assemble_block_terms(double dt);  // elastic, inertia, stress, gravity per block
   void assemble_point_terms(double dt);  // loads, fixed points, targets, boundaries at t + Δt
-  void assemble_contacts();       // block terms + contact springs and friction into the matrix
+  void assemble_contacts(bool all_rows);  // block terms + contact springs and friction (all rows, or those whose contacts changed)
   bool check_contacts();          // open-close decision; true when a contact changed
   double largest_step_displacement() const;
   double deepest_penetration() const;

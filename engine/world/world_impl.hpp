@@ -52,6 +52,7 @@ struct World::Impl {
   // Per contact, parallel to World::contacts_.
   std::vector<ContactKinematics> kinematics;
   std::vector<ContactIterate> iterate;
+  std::vector<char> contact_changed;  // by the last open-close check (its rows are reassembled)
   std::vector<ContactIterationState> saved_states;  // at the start of the step (for a redo)
   std::vector<int> entry_ve, entry_ev;  // matrix entries (vblock, eblock) and (eblock, vblock)
   // Contacts touching each block, in contact order: the row gather lists.
