@@ -75,20 +75,15 @@ void BlockJacobi::setup(const BlockSparseMatrix& a) {
   // block): a collision would only leave a stale, still SPD, preconditioner
   // row, which slows the CG a little but cannot change what it converges to.
   const std::size_t n = a.rows();
-  if (diagonal_hash_.size() != n) {
-    diagonal_hash_.assign(n, 0);
+  const bool fresh = diagonal_hash_.size() != n;  // a new matrix shape: invert every block
+  if (fresh) {
+    diagonal_hash_.resize(n);
     inverse_.resize(n);
-    parallel_for_each(n, [&](std::size_t i) {
-      const Mat6& d = a.value(a.diagonal(static_cast<int>(i)));
-      diagonal_hash_[i] = hash_of(d);
-      invert_spd6(d, inverse_[i]);
-    });
-    return;
   }
   parallel_for_each(n, [&](std::size_t i) {
     const Mat6& d = a.value(a.diagonal(static_cast<int>(i)));
     const std::uint64_t h = hash_of(d);
-    if (h == diagonal_hash_[i]) return;
+    if (!fresh && h == diagonal_hash_[i]) return;
     diagonal_hash_[i] = h;
     invert_spd6(d, inverse_[i]);
   });

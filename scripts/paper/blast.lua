@@ -61,7 +61,7 @@
 local dda = require "dda"
 local blast_model = require "blast_model"
 
-local Q = 606                                   -- kg TNT
+local Q = blast_model.charge_kg                 -- kg TNT
 local function eq23(sd) return 1.8 * sd ^ -2.5 end
 
 local figure = tostring(dda.param("figure", ""))

@@ -57,7 +57,7 @@ local END = "<!-- section 4: end -->"
 local SUBS = { "fig14a", "fig14b", "fig15" }
 local T_REFLECT = 15e-3      -- s: start of the reflected-energy window
 local CLEARLY = 0.10         -- "clearly below": the 80 m PPV at least 10 % under both (paper: 25 %)
-local Q = 606                -- kg TNT (Eq. 23 uses R/Q^(1/3))
+local Q = require("blast_model").charge_kg   -- kg TNT (Eq. 23 uses R/Q^(1/3))
 
 local function split(s)
   local t = {}

@@ -155,40 +155,6 @@ TEST(Determinism, SameStateHashForOneTwoAndFourThreads) {
   EXPECT_EQ(run_grid_scene(1), h1);
 }
 
-namespace {
-
-// wall(n) of scripts/bench/scenes.lua: n columns of 1 m x 0.5 m bricks, 2n
-// rows in running bond, on a fixed base; quasi-static settling under gravity.
-World brick_wall(int n) {
-  World w;
-  const int rock = w.add_rock_material(RockMaterial{2600, 5e9, 0.25});
-  const int joint = w.add_joint_material(JointMaterial{30, 0, 0});
-  auto add = [&](const std::vector<Vec2>& outline) {
-    return w.add_block(outline, rock, std::vector<int>(outline.size(), joint));
-  };
-  const BlockId base = add(test::rectangle(-1, -1, n + 2, 1));
-  for (double x : {0.0, 0.5 * n, 1.0 * n}) w.add_fixed_point(base, Vec2(x, -0.5));
-  for (int row = 0; row < 2 * n; ++row) {
-    const double y = 0.5 * row;
-    if (row % 2 == 0) {
-      for (int c = 0; c < n; ++c) add(test::rectangle(c, y, 1, 0.5));
-    } else {
-      add(test::rectangle(0, y, 0.5, 0.5));
-      for (int c = 0; c < n - 1; ++c) add(test::rectangle(0.5 + c, y, 1, 0.5));
-      add(test::rectangle(n - 0.5, y, 0.5, 0.5));
-    }
-  }
-  w.controls().plane = PlaneMode::Stress;
-  w.controls().g0 = 50 * 5e9;
-  w.controls().g1 = 1e-3;
-  w.controls().g2 = 0.001;
-  w.controls().open_close_limit = 8;
-  w.controls().gravity = Vec2(0, -9.81);
-  return w;
-}
-
-}  // namespace
-
 // Open-close iterations solved loosely (cg_open_close_tolerance), then
 // tightened before a step is accepted. Reference: the same scheme with every
 // solve at a relative residual of 1e-13 (loose) and 1e-14 (tight). Friction
@@ -199,7 +165,7 @@ World brick_wall(int n) {
 // (every solve tight) lags behind a solve whose states then changed and is
 // further off: bound 1e-3 (measured 2.2e-4: 3.6e-8 m).
 TEST(OpenClose, LooseSolvesUntilStatesHoldGiveTheTightAnswer) {
-  World exact = brick_wall(6), plain = brick_wall(6), loose = brick_wall(6);
+  World exact = test::brick_wall(6), plain = test::brick_wall(6), loose = test::brick_wall(6);
   exact.controls().cg_tolerance = 1e-14;
   exact.controls().cg_open_close_tolerance = 1e-13;
   plain.controls().cg_open_close_tolerance = plain.controls().cg_tolerance;
@@ -212,7 +178,7 @@ TEST(OpenClose, LooseSolvesUntilStatesHoldGiveTheTightAnswer) {
     ASSERT_EQ(loose.time(), exact.time()) << "step " << i + 1 << " was cut differently";
     ASSERT_EQ(plain.time(), exact.time()) << "step " << i + 1 << " was cut differently";
   }
-  const World start = brick_wall(6);
+  const World start = test::brick_wall(6);
   double err_plain = 0, err_loose = 0, moved = 0;
   for (BlockId b = 0; b < static_cast<BlockId>(exact.block_count()); ++b) {
     moved = std::max(moved, (exact.block_centroid(b) - start.block_centroid(b)).norm());

@@ -19,36 +19,11 @@ using namespace dda;
 
 namespace {
 
-// wall(N) of issue 8: N columns of 1 m × 0.5 m bricks, 2N rows in running
-// bond (half bricks at alternate row ends), on a 1 m base held by three fixed
-// points; quasi-static (Δt = 1e-3 s, g2 = 0.001, g0 = 50E).
+// test::brick_wall, solved on one thread with block-Jacobi unless a test says otherwise.
 World brick_wall(int n) {
-  World w;
-  const RockMaterial rock{2600, 5e9, 0.25};
-  const int m = w.add_rock_material(rock);
-  w.joint_material(0) = JointMaterial{30, 0, 0};
-  const BlockId base = w.add_block(test::rectangle(-1, -1, n + 2, 1), m);
-  w.add_fixed_point(base, Vec2(0, -0.5));
-  w.add_fixed_point(base, Vec2(n / 2.0, -0.5));
-  w.add_fixed_point(base, Vec2(n, -0.5));
-  for (int row = 0; row < 2 * n; ++row) {
-    const double y = row * 0.5;
-    if (row % 2 == 0) {
-      for (int c = 0; c < n; ++c) w.add_block(test::rectangle(c, y, 1, 0.5), m);
-    } else {
-      w.add_block(test::rectangle(0, y, 0.5, 0.5), m);
-      for (int c = 0; c < n - 1; ++c) w.add_block(test::rectangle(0.5 + c, y, 1, 0.5), m);
-      w.add_block(test::rectangle(n - 0.5, y, 0.5, 0.5), m);
-    }
-  }
-  Controls& c = w.controls();
-  c.gravity = Vec2(0, -9.81);
-  c.g1 = 1e-3;
-  c.g2 = 0.001;
-  c.g0 = 50 * rock.youngs;
-  c.open_close_limit = 8;
-  c.threads = 1;
-  c.preconditioner = Preconditioning::BlockJacobi;
+  World w = test::brick_wall(n);
+  w.controls().threads = 1;
+  w.controls().preconditioner = Preconditioning::BlockJacobi;
   return w;
 }
 
