@@ -39,42 +39,12 @@
 
 #include "solver/linear_solver.hpp"
 #include "solver/multigrid.hpp"
+#include "scenes.hpp"  // tests/engine: test::brick_wall, test::rectangle
 #include "world/world.hpp"
 
 using namespace dda;
 
 namespace {
-
-std::vector<Vec2> rectangle(double x0, double y0, double w, double h) {
-  return {{x0, y0}, {x0 + w, y0}, {x0 + w, y0 + h}, {x0, y0 + h}};
-}
-
-void build_wall(World& w, int n) {
-  const RockMaterial rock{2600, 5e9, 0.25};
-  const int m = w.add_rock_material(rock);
-  w.joint_material(0) = JointMaterial{30, 0, 0};
-  const BlockId base = w.add_block(rectangle(-1, -1, n + 2, 1), m);
-  w.add_fixed_point(base, Vec2(0, -0.5));
-  w.add_fixed_point(base, Vec2(n / 2.0, -0.5));
-  w.add_fixed_point(base, Vec2(n, -0.5));
-  for (int row = 0; row < 2 * n; ++row) {
-    const double y = row * 0.5;
-    if (row % 2 == 0) {
-      for (int c = 0; c < n; ++c) w.add_block(rectangle(c, y, 1, 0.5), m);
-    } else {
-      w.add_block(rectangle(0, y, 0.5, 0.5), m);
-      for (int c = 0; c < n - 1; ++c) w.add_block(rectangle(0.5 + c, y, 1, 0.5), m);
-      w.add_block(rectangle(n - 0.5, y, 0.5, 0.5), m);
-    }
-  }
-  Controls& c = w.controls();
-  c.plane = PlaneMode::Stress;
-  c.gravity = Vec2(0, -9.81);
-  c.g1 = 1e-3;
-  c.g2 = 0.001;
-  c.g0 = 50 * rock.youngs;
-  c.open_close_limit = 8;
-}
 
 struct Bar {
   std::vector<int> loads;
@@ -87,7 +57,7 @@ Bar build_bar(World& w) {
   const double l = 0.2;
   const int nx = 100, ny = 5;
   for (int j = 0; j < ny; ++j)
-    for (int i = 0; i < nx; ++i) w.add_block(rectangle(i * l, j * l, l, l), m);
+    for (int i = 0; i < nx; ++i) w.add_block(test::rectangle(i * l, j * l, l, l), m);
   w.controls().g0 = 20 * rock.youngs;
   w.controls().g1 = 2e-6;
   Bar bar;
@@ -132,7 +102,7 @@ Result run(const std::string& scene, int threads, const std::string& pre, int wa
   if (is_bar) {
     bar = build_bar(w);
   } else {
-    build_wall(w, std::atoi(scene.c_str() + 4));
+    w = test::brick_wall(std::atoi(scene.c_str() + 4));
   }
   w.controls().threads = threads;
   w.controls().preconditioner = parse_pre(pre);
@@ -188,7 +158,7 @@ void solver_table(const std::vector<std::string>& scenes, int steps) {
   for (const auto& scene : scenes) {
     if (scene.rfind("wall", 0) != 0) continue;
     World w;
-    build_wall(w, std::atoi(scene.c_str() + 4));
+    w = test::brick_wall(std::atoi(scene.c_str() + 4));
     w.controls().threads = 1;
     w.controls().preconditioner = Preconditioning::Multigrid;
     // At least `steps` steps, then on until a step ran at the full Δt = g1
