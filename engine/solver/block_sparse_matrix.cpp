@@ -40,11 +40,15 @@ int BlockSparseMatrix::find(int i, int j) const {
 
 void BlockSparseMatrix::multiply(const VecX& x, VecX& y) const {
   y.resize(6 * n_);
-  parallel_for_each(n_, [&](std::size_t i) {
+  parallel_for_each(n_, [&](std::size_t i) { multiply_rows(static_cast<int>(i), static_cast<int>(i) + 1, x, y); }, 32);
+}
+
+void BlockSparseMatrix::multiply_rows(int begin, int end, const VecX& x, VecX& y) const {
+  for (int i = begin; i < end; ++i) {
     Vec6 s = Vec6::Zero();
     for (int k = row_start_[i]; k < row_start_[i + 1]; ++k) s.noalias() += values_[k] * x.segment<6>(6 * cols_[k]);
     y.segment<6>(6 * i) = s;
-  }, 32);
+  }
 }
 
 Eigen::SparseMatrix<double> BlockSparseMatrix::to_sparse() const {

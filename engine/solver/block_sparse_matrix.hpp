@@ -10,15 +10,16 @@
 #include <vector>
 
 #include "core/types.hpp"
+#include "solver/linear_operator.hpp"
 
 namespace dda {
 
-class BlockSparseMatrix {
+class BlockSparseMatrix final : public LinearOperator {
  public:
   // n block rows; `pairs` are the off-diagonal couplings (i < j), sorted and unique.
   void set_structure(int n, std::span<const std::pair<int, int>> pairs);
 
-  int rows() const { return n_; }
+  int rows() const override { return n_; }
   int nonzero_blocks() const { return static_cast<int>(cols_.size()); }
   int row_begin(int i) const { return row_start_[i]; }
   int row_end(int i) const { return row_start_[i + 1]; }
@@ -35,6 +36,11 @@ class BlockSparseMatrix {
 
   // y = A·x, parallel over block rows.
   void multiply(const VecX& x, VecX& y) const;
+
+  // LinearOperator
+  const Mat6& diagonal_block(int i) const override { return values_[diag_[i]]; }
+  void multiply_rows(int begin, int end, const VecX& x, VecX& y) const override;
+  const BlockSparseMatrix& stored() const override { return *this; }
 
   // Scalar sparse copy (test oracle and debugging only; not used in the step).
   Eigen::SparseMatrix<double> to_sparse() const;

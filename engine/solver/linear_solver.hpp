@@ -23,7 +23,7 @@ struct SolveReport {
 class LinearSolver {
  public:
   virtual ~LinearSolver() = default;
-  virtual void set_operator(const BlockSparseMatrix& a) = 0;
+  virtual void set_operator(const LinearOperator& a) = 0;
   // Solves A·x = b; x holds the initial guess on entry.
   virtual SolveReport solve(const VecX& b, VecX& x) = 0;
 
@@ -40,14 +40,14 @@ class Preconditioner {
   // The blocks' centroids, for preconditioners that coarsen geometrically.
   // Called before setup() whenever the geometry may have changed.
   virtual void set_block_centroids(std::span<const Vec2> /*centroids*/) {}
-  virtual void setup(const BlockSparseMatrix& a) = 0;
+  virtual void setup(const LinearOperator& a) = 0;
   virtual void apply(const VecX& r, VecX& z) const = 0;
 };
 
 // Block-Jacobi: the inverse of each 6×6 diagonal block (Cholesky).
 class BlockJacobi final : public Preconditioner {
  public:
-  void setup(const BlockSparseMatrix& a) override;
+  void setup(const LinearOperator& a) override;
   void apply(const VecX& r, VecX& z) const override;
 
  private:
@@ -63,7 +63,7 @@ class BlockJacobi final : public Preconditioner {
 class PcgSolver final : public LinearSolver {
  public:
   explicit PcgSolver(std::unique_ptr<Preconditioner> pre = std::make_unique<BlockJacobi>());
-  void set_operator(const BlockSparseMatrix& a) override;
+  void set_operator(const LinearOperator& a) override;
   Preconditioner& preconditioner() { return *pre_; }
   void set_preconditioner(std::unique_ptr<Preconditioner> pre) { pre_ = std::move(pre); }
   SolveReport solve(const VecX& b, VecX& x) override;
@@ -72,7 +72,7 @@ class PcgSolver final : public LinearSolver {
   template <typename F>
   double chunked_sum(std::size_t blocks, F&& f);
 
-  const BlockSparseMatrix* a_ = nullptr;
+  const LinearOperator* a_ = nullptr;
   std::unique_ptr<Preconditioner> pre_;
   VecX r_, z_, p_, ap_;          // reused between solves: no allocation in the step loop
   std::vector<double> partial_;  // per-chunk partial sums of the fused kernels
@@ -81,7 +81,7 @@ class PcgSolver final : public LinearSolver {
 // Sparse direct LDLᵀ (Eigen). A test oracle, not used by the engine's step.
 class DirectSolver final : public LinearSolver {
  public:
-  void set_operator(const BlockSparseMatrix& a) override { a_ = &a; }
+  void set_operator(const LinearOperator& a) override { a_ = &a.stored(); }
   SolveReport solve(const VecX& b, VecX& x) override;
 
  private:

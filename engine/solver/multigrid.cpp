@@ -50,7 +50,9 @@ double Multigrid::smoother_weight(int level) const { return levels_[level].weigh
 
 const BlockSparseMatrix& Multigrid::op(std::size_t level) const { return level == 0 ? *fine_ : levels_[level].owned; }
 
-void Multigrid::setup(const BlockSparseMatrix& a) {
+void Multigrid::setup(const LinearOperator& op) {
+  // The Galerkin products need the fine matrix's entries.
+  const BlockSparseMatrix& a = op.stored();
   fine_ = &a;
   const auto rows = a.row_starts(), cols = a.columns();
   const bool same_pattern = !levels_.empty() && std::equal(rows.begin(), rows.end(), pattern_rows_.begin(), pattern_rows_.end()) &&

@@ -88,7 +88,7 @@ class Multigrid final : public Preconditioner {
  public:
   explicit Multigrid(const MultigridOptions& options = {});
   void set_block_centroids(std::span<const Vec2> centroids) override;
-  void setup(const BlockSparseMatrix& a) override;
+  void setup(const LinearOperator& a) override;
   void apply(const VecX& r, VecX& z) const override;
 
   // For tests and benchmarks.

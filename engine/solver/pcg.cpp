@@ -67,7 +67,7 @@ std::uint64_t hash_of(const Mat6& m) {
 }
 }  // namespace
 
-void BlockJacobi::setup(const BlockSparseMatrix& a) {
+void BlockJacobi::setup(const LinearOperator& a) {
   // Between the open-close iterations of a step only the rows of blocks whose
   // contacts changed state get new diagonal blocks: re-invert just those (the
   // comparison costs a fraction of the 6x6 Cholesky and leaves the same bits).
@@ -81,7 +81,7 @@ void BlockJacobi::setup(const BlockSparseMatrix& a) {
     inverse_.resize(n);
   }
   parallel_for_each(n, [&](std::size_t i) {
-    const Mat6& d = a.value(a.diagonal(static_cast<int>(i)));
+    const Mat6& d = a.diagonal_block(static_cast<int>(i));
     const std::uint64_t h = hash_of(d);
     if (!fresh && h == diagonal_hash_[i]) return;
     diagonal_hash_[i] = h;
@@ -96,14 +96,16 @@ void BlockJacobi::apply(const VecX& r, VecX& z) const {
 
 PcgSolver::PcgSolver(std::unique_ptr<Preconditioner> pre) : pre_(std::move(pre)) {}
 
-void PcgSolver::set_operator(const BlockSparseMatrix& a) {
+void PcgSolver::set_operator(const LinearOperator& a) {
   a_ = &a;
   pre_->setup(a);
 }
 
-// Fused vector kernels. Each works over fixed chunks of kPcgChunk blocks and
-// returns a dot product summed per chunk, then over the chunks in order: the
-// same bits for any thread count, and no allocation (partial_ is reused).
+// Fused vector kernels. Each works over fixed chunks of kPcgChunk blocks,
+// f(begin, end) returning the chunk's share of a dot product; the shares are
+// summed in chunk order: the same bits for any thread count, and no
+// allocation (partial_ is reused). The mat-vec runs chunk by chunk inside
+// them, so its rows are still in cache for the dot product.
 namespace {
 constexpr std::size_t kPcgChunk = 64;
 }
@@ -112,12 +114,7 @@ template <typename F>
 double PcgSolver::chunked_sum(std::size_t blocks, F&& f) {
   const std::size_t chunks = (blocks + kPcgChunk - 1) / kPcgChunk;
   partial_.resize(chunks);
-  parallel_for_each(chunks, [&](std::size_t c) {
-    double s = 0;
-    const std::size_t end = std::min(blocks, (c + 1) * kPcgChunk);
-    for (std::size_t i = c * kPcgChunk; i < end; ++i) s += f(i);
-    partial_[c] = s;
-  }, 1);
+  parallel_for_each(chunks, [&](std::size_t c) { partial_[c] = f(c * kPcgChunk, std::min(blocks, (c + 1) * kPcgChunk)); }, 1);
   double total = 0;
   for (std::size_t c = 0; c < chunks; ++c) total += partial_[c];
   return total;
@@ -125,7 +122,7 @@ double PcgSolver::chunked_sum(std::size_t blocks, F&& f) {
 
 SolveReport PcgSolver::solve(const VecX& b, VecX& x) {
   DDA_ASSERT(a_ != nullptr, "PcgSolver::solve before set_operator");
-  const BlockSparseMatrix& a = *a_;
+  const LinearOperator& a = *a_;
   SolveReport report;
   const std::size_t n = static_cast<std::size_t>(b.size());
   const std::size_t blocks = n / 6;
@@ -133,7 +130,9 @@ SolveReport PcgSolver::solve(const VecX& b, VecX& x) {
   r_.resize(n);
   p_.resize(n);
   ap_.resize(n);
-  const double bnorm = std::sqrt(chunked_sum(blocks, [&](std::size_t i) { return b.segment<6>(6 * i).squaredNorm(); }));
+  const double bnorm = std::sqrt(chunked_sum(blocks, [&](std::size_t begin, std::size_t end) {
+    return b.segment(6 * begin, 6 * (end - begin)).squaredNorm();
+  }));
   if (!std::isfinite(bnorm)) {
     report.finite = false;
     return report;
@@ -143,13 +142,12 @@ SolveReport PcgSolver::solve(const VecX& b, VecX& x) {
     report.converged = true;
     return report;
   }
-  // r = b − A·x, and ‖r‖², one block row per task.
-  double rr = chunked_sum(blocks, [&](std::size_t i) {
-    Vec6 s = b.segment<6>(6 * i);
-    for (int k = a.row_begin(static_cast<int>(i)); k < a.row_end(static_cast<int>(i)); ++k)
-      s.noalias() -= a.value(k) * x.segment<6>(6 * a.col(k));
-    r_.segment<6>(6 * i) = s;
-    return s.squaredNorm();
+  // r = b − A·x, and ‖r‖².
+  double rr = chunked_sum(blocks, [&](std::size_t begin, std::size_t end) {
+    a.multiply_rows(static_cast<int>(begin), static_cast<int>(end), x, r_);
+    auto r = r_.segment(6 * begin, 6 * (end - begin));
+    r = b.segment(6 * begin, 6 * (end - begin)) - r;
+    return r.squaredNorm();
   });
   report.relative_residual = std::sqrt(rr) / bnorm;
   if (!std::isfinite(rr)) {
@@ -161,18 +159,17 @@ SolveReport PcgSolver::solve(const VecX& b, VecX& x) {
     return report;
   }
   pre_->apply(r_, z_);
-  double rz = chunked_sum(blocks, [&](std::size_t i) {
-    p_.segment<6>(6 * i) = z_.segment<6>(6 * i);
-    return r_.segment<6>(6 * i).dot(z_.segment<6>(6 * i));
+  double rz = chunked_sum(blocks, [&](std::size_t begin, std::size_t end) {
+    const std::size_t o = 6 * begin, len = 6 * (end - begin);
+    p_.segment(o, len) = z_.segment(o, len);
+    return r_.segment(o, len).dot(z_.segment(o, len));
   });
   for (int it = 1; it <= max_iterations; ++it) {
     // ap = A·p and pᵀAp in one pass.
-    const double pap = chunked_sum(blocks, [&](std::size_t i) {
-      Vec6 s = Vec6::Zero();
-      for (int k = a.row_begin(static_cast<int>(i)); k < a.row_end(static_cast<int>(i)); ++k)
-        s.noalias() += a.value(k) * p_.segment<6>(6 * a.col(k));
-      ap_.segment<6>(6 * i) = s;
-      return p_.segment<6>(6 * i).dot(s);
+    const double pap = chunked_sum(blocks, [&](std::size_t begin, std::size_t end) {
+      a.multiply_rows(static_cast<int>(begin), static_cast<int>(end), p_, ap_);
+      const std::size_t o = 6 * begin, len = 6 * (end - begin);
+      return p_.segment(o, len).dot(ap_.segment(o, len));
     });
     report.iterations = it;
     if (!std::isfinite(pap) || pap <= 0 || !(rz > 0)) {
@@ -181,10 +178,11 @@ SolveReport PcgSolver::solve(const VecX& b, VecX& x) {
     }
     const double alpha = rz / pap;
     // x += α·p, r −= α·Ap, and ‖r‖² in one pass.
-    rr = chunked_sum(blocks, [&](std::size_t i) {
-      x.segment<6>(6 * i) += alpha * p_.segment<6>(6 * i);
-      r_.segment<6>(6 * i) -= alpha * ap_.segment<6>(6 * i);
-      return r_.segment<6>(6 * i).squaredNorm();
+    rr = chunked_sum(blocks, [&](std::size_t begin, std::size_t end) {
+      const std::size_t o = 6 * begin, len = 6 * (end - begin);
+      x.segment(o, len) += alpha * p_.segment(o, len);
+      r_.segment(o, len) -= alpha * ap_.segment(o, len);
+      return r_.segment(o, len).squaredNorm();
     });
     report.relative_residual = std::sqrt(rr) / bnorm;
     if (monitor) monitor(it, report.relative_residual);
@@ -197,7 +195,10 @@ SolveReport PcgSolver::solve(const VecX& b, VecX& x) {
       return report;
     }
     pre_->apply(r_, z_);
-    const double rz_next = chunked_sum(blocks, [&](std::size_t i) { return r_.segment<6>(6 * i).dot(z_.segment<6>(6 * i)); });
+    const double rz_next = chunked_sum(blocks, [&](std::size_t begin, std::size_t end) {
+      const std::size_t o = 6 * begin, len = 6 * (end - begin);
+      return r_.segment(o, len).dot(z_.segment(o, len));
+    });
     const double beta = rz_next / rz;
     rz = rz_next;
     parallel_for_each(blocks, [&](std::size_t i) { p_.segment<6>(6 * i) = z_.segment<6>(6 * i) + beta * p_.segment<6>(6 * i); }, kPcgChunk);

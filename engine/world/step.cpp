@@ -275,31 +275,8 @@ void World::detect_contacts() {
   contacts_ = std::move(found);
   m.first_detection = false;
 
-  // Matrix shape: one off-diagonal block per contacting block pair.
-  std::vector<std::pair<int, int>> coupled;
-  coupled.reserve(contacts_.size());
-  for (const Contact& c : contacts_) coupled.emplace_back(std::min(c.vblock, c.eblock), std::max(c.vblock, c.eblock));
-  std::sort(coupled.begin(), coupled.end());
-  coupled.erase(std::unique(coupled.begin(), coupled.end()), coupled.end());
-  const int n = static_cast<int>(block_count());
-  m.matrix.set_structure(n, coupled);
-  const std::size_t nc = contacts_.size();
-  m.entry_ve.resize(nc);
-  m.entry_ev.resize(nc);
-  m.row_start.assign(n + 1, 0);
-  for (std::size_t i = 0; i < nc; ++i) {
-    m.entry_ve[i] = m.matrix.find(contacts_[i].vblock, contacts_[i].eblock);
-    m.entry_ev[i] = m.matrix.find(contacts_[i].eblock, contacts_[i].vblock);
-    ++m.row_start[contacts_[i].vblock + 1];
-    ++m.row_start[contacts_[i].eblock + 1];
-  }
-  for (int b = 0; b < n; ++b) m.row_start[b + 1] += m.row_start[b];
-  m.row_contacts.resize(m.row_start[n]);
-  std::vector<int> fill(m.row_start.begin(), m.row_start.end() - 1);
-  for (std::size_t i = 0; i < nc; ++i) {  // ascending i: each row's list is in contact order
-    m.row_contacts[fill[contacts_[i].vblock]++] = static_cast<int>(i);
-    m.row_contacts[fill[contacts_[i].eblock]++] = static_cast<int>(i);
-  }
+  // The system's rows: which contacts couple which blocks.
+  m.system.set_contacts(static_cast<int>(block_count()), contacts_);
 }
 
 // ---- Stage: open-close loop { Assemble → Solve → CheckContacts } -------------
@@ -328,6 +305,8 @@ int World::solve_step(double dt) {
   const bool long_solves = last_stats_.open_close_iterations > 0 &&
                            last_stats_.cg_iterations > kLooseAboveIterations * last_stats_.open_close_iterations;
   const double loose = long_solves ? std::max(tight, controls_.cg_open_close_tolerance) : tight;
+  // Long solves are dominated by the mat-vec: multiply with stored blocks.
+  m.system.store_products(long_solves);
   bool settled = false;
   bool tightening = false;
   for (int it = 0; it < controls_.open_close_limit && !settled; ++it) {
@@ -339,7 +318,7 @@ int World::solve_step(double dt) {
 
     t0 = Clock::now();
     m.solver.preconditioner().set_block_centroids(centroid_);
-    m.solver.set_operator(m.matrix);
+    m.solver.set_operator(m.system);
     const SolveReport report = m.solver.solve(m.rhs, m.solution);
     m.cg_iterations += report.iterations;
     m.t_solve += seconds_since(t0);
@@ -478,53 +457,50 @@ void World::assemble_contacts(bool all_rows) {
   const int n = static_cast<int>(block_count());
   const double kn_full = m.g0, ks_full = controls_.shear_ratio * m.g0;
   m.rhs.resize(6 * n);
+  // The springs each contact acts with in this solve: normal on a closed
+  // contact, shear too on a locked one.
+  parallel_for_each(contacts_.size(), [&](std::size_t i) {
+    const Contact& c = contacts_[i];
+    ContactOperator::Springs& k = m.system.springs(static_cast<int>(i));
+    k.kn = c.state == ContactState::Open ? 0.0 : c.scale * kn_full;
+    k.ks = c.state == ContactState::Locked ? c.scale * ks_full : 0.0;
+  }, 1024);
   // Each block row is gathered by one task, adding its contacts in contact
   // order: no races, and the same sums whatever the thread count.
   parallel_for_each(n, [&](std::size_t bi) {
     const int b = static_cast<int>(bi);
+    const std::span<const int> row = m.system.row_contacts(b);
     // A row none of whose contacts changed state since the last assembly of
-    // this step keeps its matrix blocks (they would come out the same to the
+    // this step keeps its diagonal block (it would come out the same to the
     // bit); its right-hand side is redone (friction follows the latest N).
     bool matrix_too = all_rows;
-    for (int r = m.row_start[b]; r < m.row_start[b + 1] && !matrix_too; ++r) matrix_too = m.contact_changed[m.row_contacts[r]];
-    if (matrix_too) {
-      for (int e = m.matrix.row_begin(b); e < m.matrix.row_end(b); ++e) m.matrix.value(e).setZero();
-      m.matrix.value(m.matrix.diagonal(b)) = m.own_k[b];
-    }
-    Mat6& diag = m.matrix.value(m.matrix.diagonal(b));
+    for (std::size_t r = 0; r < row.size() && !matrix_too; ++r) matrix_too = m.contact_changed[row[r]];
+    Mat6& diag = m.system.diagonal(b);
+    if (matrix_too) diag = m.own_k[b];
     Vec6 f = m.own_f[b];
-    for (int r = m.row_start[b]; r < m.row_start[b + 1]; ++r) {
-      const int i = m.row_contacts[r];
+    for (const int i : row) {
       const Contact& c = contacts_[i];
       if (c.state == ContactState::Open) continue;
       const ContactKinematics& k = m.kinematics[i];
+      const ContactOperator::Springs& springs = m.system.springs(i);
       const bool is_vertex_block = c.vblock == b;
       const Vec6& en_self = is_vertex_block ? k.en_v : k.en_e;
-      const Vec6& en_other = is_vertex_block ? k.en_e : k.en_v;
       const Vec6& es_self = is_vertex_block ? k.es_v : k.es_e;
-      const Vec6& es_other = is_vertex_block ? k.es_e : k.es_v;
-      Mat6& off = m.matrix.value(is_vertex_block ? m.entry_ve[i] : m.entry_ev[i]);
-      const double kn = c.scale * kn_full, ks = c.scale * ks_full;
       // Normal spring on dn = d0 + en·D (and, locked, shear spring on
-      // ds = s0 + es·D): kn·en enᵀ (+ ks·es esᵀ), written column by column
-      // (each a 6-vector update: this is the hottest loop of wave problems).
+      // ds = s0 + es·D): kn·en enᵀ (+ ks·es esᵀ) on the diagonal, written
+      // column by column (each a 6-vector update); the coupling to the
+      // other block stays with the operator (assembly/contact_operator.hpp).
       if (matrix_too) {
-        const Vec6 kn_en = kn * en_self;
-        for (int j = 0; j < 6; ++j) {
-          diag.col(j) += en_self[j] * kn_en;
-          off.col(j) += en_other[j] * kn_en;
-        }
+        const Vec6 kn_en = springs.kn * en_self;
+        for (int j = 0; j < 6; ++j) diag.col(j) += en_self[j] * kn_en;
       }
-      f -= kn * k.d0 * en_self;
+      f -= springs.kn * k.d0 * en_self;
       if (c.state == ContactState::Locked) {
         if (matrix_too) {
-          const Vec6 ks_es = ks * es_self;
-          for (int j = 0; j < 6; ++j) {
-            diag.col(j) += es_self[j] * ks_es;
-            off.col(j) += es_other[j] * ks_es;
-          }
+          const Vec6 ks_es = springs.ks * es_self;
+          for (int j = 0; j < 6; ++j) diag.col(j) += es_self[j] * ks_es;
         }
-        f -= ks * m.iterate[i].s0 * es_self;
+        f -= springs.ks * m.iterate[i].s0 * es_self;
       } else {
         // Sliding: friction N·tanφ against the sliding direction, with N
         // from the previous iteration.
@@ -534,6 +510,8 @@ void World::assemble_contacts(bool all_rows) {
     }
     m.rhs.segment<6>(6 * b) = f;
   }, 16);
+  m.system.set_kinematics(m.kinematics);
+  m.system.assembled();
 }
 
 bool World::check_contacts() {

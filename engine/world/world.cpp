@@ -199,7 +199,7 @@ double World::suggested_time_step() const {
   return std::min(0.05 * h_min / cp_max, 2 * 0.177 * std::sqrt(m_min / g0));
 }
 
-const BlockSparseMatrix& World::last_matrix() const { return impl_->matrix; }
+const BlockSparseMatrix& World::last_matrix() const { return impl_->system.stored(); }
 const VecX& World::last_rhs() const { return impl_->rhs; }
 
 std::uint64_t World::state_hash() const {

@@ -8,6 +8,7 @@
 #include <optional>
 #include <vector>
 
+#include "assembly/contact_operator.hpp"
 #include "contact/contact_law.hpp"
 #include "solver/linear_solver.hpp"
 #include "world/world.hpp"
@@ -40,7 +41,7 @@ struct World::Impl {
   std::unique_ptr<tbb::task_arena> arena;
   int arena_threads = -1;
 
-  BlockSparseMatrix matrix;
+  ContactOperator system;  // the matrix of the step, matrix-free off the diagonal
   PcgSolver solver;
   std::optional<Preconditioning> preconditioner_kind;
   VecX rhs, solution;
@@ -54,9 +55,6 @@ struct World::Impl {
   std::vector<ContactIterate> iterate;
   std::vector<char> contact_changed;  // by the last open-close check (its rows are reassembled)
   std::vector<ContactIterationState> saved_states;  // at the start of the step (for a redo)
-  std::vector<int> entry_ve, entry_ev;  // matrix entries (vblock, eblock) and (eblock, vblock)
-  // Contacts touching each block, in contact order: the row gather lists.
-  std::vector<int> row_start, row_contacts;
 
   bool first_detection = true;  // contacts found before the first step are intact joints
   // The contact list's search state (see detect_contacts).

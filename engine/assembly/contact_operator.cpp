@@ -1,0 +1,99 @@
+#include "assembly/contact_operator.hpp"
+
+#include <algorithm>
+
+#include "core/error.hpp"
+#include "core/parallel.hpp"
+
+namespace dda {
+
+void ContactOperator::set_contacts(int blocks, std::span<const Contact> contacts) {
+  const std::size_t nc = contacts.size();
+  diagonal_.resize(blocks);
+  blocks_.resize(nc);
+  springs_.assign(nc, Springs{});
+  row_start_.assign(blocks + 1, 0);
+  for (std::size_t i = 0; i < nc; ++i) {
+    blocks_[i] = {contacts[i].vblock, contacts[i].eblock};
+    ++row_start_[contacts[i].vblock + 1];
+    ++row_start_[contacts[i].eblock + 1];
+  }
+  for (int b = 0; b < blocks; ++b) row_start_[b + 1] += row_start_[b];
+  row_contacts_.resize(row_start_[blocks]);
+  std::vector<int> fill(row_start_.begin(), row_start_.end() - 1);
+  for (std::size_t i = 0; i < nc; ++i) {  // ascending i: each row's list is in contact order
+    row_contacts_[fill[blocks_[i].first]++] = static_cast<int>(i);
+    row_contacts_[fill[blocks_[i].second]++] = static_cast<int>(i);
+  }
+  kinematics_ = {};
+  stored_valid_ = stored_shaped_ = false;
+}
+
+void ContactOperator::set_kinematics(std::span<const ContactKinematics> kinematics) {
+  DDA_ASSERT(kinematics.size() == blocks_.size(), "one linearisation per contact");
+  kinematics_ = kinematics;
+  stored_valid_ = false;
+}
+
+void ContactOperator::assembled() {
+  stored_valid_ = false;
+  if (store_products_) stored();
+}
+
+void ContactOperator::multiply_rows(int begin, int end, const VecX& x, VecX& y) const {
+  if (store_products_) {
+    DDA_ASSERT(stored_valid_, "ContactOperator: products from a stored matrix not assembled");
+    stored_.multiply_rows(begin, end, x, y);
+    return;
+  }
+  for (int b = begin; b < end; ++b) {
+    Vec6 s = diagonal_[b] * x.segment<6>(6 * b);
+    for (int r = row_start_[b]; r < row_start_[b + 1]; ++r) {
+      const int i = row_contacts_[r];
+      const Springs& k = springs_[i];
+      if (k.kn == 0 && k.ks == 0) continue;  // open
+      const ContactKinematics& c = kinematics_[i];
+      const bool vertex_side = blocks_[i].first == b;
+      const auto x_other = x.segment<6>(6 * (vertex_side ? blocks_[i].second : blocks_[i].first));
+      // Row b of k·e eᵀ restricted to the other block: k·e_self·(e_other·x_other).
+      s += (k.kn * (vertex_side ? c.en_e : c.en_v).dot(x_other)) * (vertex_side ? c.en_v : c.en_e);
+      if (k.ks != 0) s += (k.ks * (vertex_side ? c.es_e : c.es_v).dot(x_other)) * (vertex_side ? c.es_v : c.es_e);
+    }
+    y.segment<6>(6 * b) = s;
+  }
+}
+
+const BlockSparseMatrix& ContactOperator::stored() const {
+  if (stored_valid_) return stored_;
+  const int n = rows();
+  if (!stored_shaped_) {
+    std::vector<std::pair<int, int>> coupled;
+    coupled.reserve(blocks_.size());
+    for (const auto& [v, e] : blocks_) coupled.emplace_back(std::min(v, e), std::max(v, e));
+    std::sort(coupled.begin(), coupled.end());
+    coupled.erase(std::unique(coupled.begin(), coupled.end()), coupled.end());
+    stored_.set_structure(n, coupled);
+    stored_shaped_ = true;
+  }
+  parallel_for_each(n, [&](std::size_t bi) {
+    const int b = static_cast<int>(bi);
+    for (int e = stored_.row_begin(b); e < stored_.row_end(b); ++e) stored_.value(e).setZero();
+    stored_.value(stored_.diagonal(b)) = diagonal_[b];
+    for (int r = row_start_[b]; r < row_start_[b + 1]; ++r) {
+      const int i = row_contacts_[r];
+      const Springs& k = springs_[i];
+      if (k.kn == 0 && k.ks == 0) continue;
+      const ContactKinematics& c = kinematics_[i];
+      const bool vertex_side = blocks_[i].first == b;
+      Mat6& off = stored_.value(stored_.find(b, vertex_side ? blocks_[i].second : blocks_[i].first));
+      const Vec6 &en_self = vertex_side ? c.en_v : c.en_e, &en_other = vertex_side ? c.en_e : c.en_v;
+      const Vec6 &es_self = vertex_side ? c.es_v : c.es_e, &es_other = vertex_side ? c.es_e : c.es_v;
+      off += k.kn * en_self * en_other.transpose();
+      if (k.ks != 0) off += k.ks * es_self * es_other.transpose();
+    }
+  }, 16);
+  stored_valid_ = true;
+  return stored_;
+}
+
+}  // namespace dda

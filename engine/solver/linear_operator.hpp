@@ -1,0 +1,27 @@
+#pragma once
+// The system matrix as the solvers see it: symmetric, in block rows of 6
+// (one per rock block), with its diagonal blocks and the product y = A·x by
+// ranges of block rows. Either stored (BlockSparseMatrix) or matrix-free
+// (the contact springs, assembly/contact_operator.hpp).
+#include "core/types.hpp"
+
+namespace dda {
+
+class BlockSparseMatrix;
+
+class LinearOperator {
+ public:
+  virtual ~LinearOperator() = default;
+  virtual int rows() const = 0;  // block rows
+  virtual const Mat6& diagonal_block(int i) const = 0;
+  // (A·x) for block rows [begin, end) written into the same rows of y (sized
+  // by the caller); other rows of y are left alone. Rows are independent:
+  // ranges may run in parallel, and a row's result never depends on how the
+  // rows were split.
+  virtual void multiply_rows(int begin, int end, const VecX& x, VecX& y) const = 0;
+  // The operator as a stored matrix, for what needs its entries (multigrid's
+  // Galerkin products, the direct test solver). May assemble it on the call.
+  virtual const BlockSparseMatrix& stored() const = 0;
+};
+
+}  // namespace dda
