@@ -9,6 +9,7 @@
 #include <span>
 #include <vector>
 
+#include "core/symmetric6.hpp"
 #include "solver/block_sparse_matrix.hpp"
 
 namespace dda {
@@ -52,7 +53,7 @@ class BlockJacobi final : public Preconditioner {
 
  private:
   std::vector<std::uint64_t> diagonal_hash_;  // of the blocks inverse_ was made from
-  std::vector<Mat6> inverse_;
+  std::vector<Symmetric6> inverse_;
 };
 
 // Preconditioned conjugate gradients with a parallel mat-vec and

@@ -85,13 +85,15 @@ void BlockJacobi::setup(const LinearOperator& a) {
     const std::uint64_t h = hash_of(d);
     if (!fresh && h == diagonal_hash_[i]) return;
     diagonal_hash_[i] = h;
-    invert_spd6(d, inverse_[i]);
+    Mat6 inverse;
+    invert_spd6(d, inverse);
+    inverse_[i] = Symmetric6(inverse);
   });
 }
 
 void BlockJacobi::apply(const VecX& r, VecX& z) const {
   z.resize(r.size());
-  parallel_for_each(inverse_.size(), [&](std::size_t i) { z.segment<6>(6 * i).noalias() = inverse_[i] * r.segment<6>(6 * i); }, 128);
+  parallel_for_each(inverse_.size(), [&](std::size_t i) { z.segment<6>(6 * i) = inverse_[i] * Vec6(r.segment<6>(6 * i)); }, 128);
 }
 
 PcgSolver::PcgSolver(std::unique_ptr<Preconditioner> pre) : pre_(std::move(pre)) {}

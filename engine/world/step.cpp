@@ -381,7 +381,7 @@ void World::assemble_block_terms(double dt) {
     // Body force.
     f[0] += mass_[b] * g.x();
     f[1] += mass_[b] * g.y();
-    m.own_k[b] = k;
+    m.own_k[b] = Symmetric6(k);
     m.own_f[b] = f;
   });
   assemble_point_terms(dt);
@@ -398,7 +398,7 @@ void World::assemble_point_terms(double dt) {
   // A spring of stiffness matrix k pulling the point towards `goal`.
   auto add_spring = [&](BlockId b, const Vec2& at, const Eigen::Matrix2d& k, const Vec2& goal) {
     const Mat26 t = displacement_matrix(at, centroid_[b]);
-    m.own_k[b] += t.transpose() * k * t;
+    m.own_k[b] = Symmetric6(m.own_k[b].full() + t.transpose() * k * t);
     m.own_f[b] += t.transpose() * (k * (goal - at));
   };
 
@@ -441,7 +441,7 @@ void World::assemble_point_terms(double dt) {
   for (const BoundaryPoint& p : boundary_points_) {
     const Mat26 t = displacement_matrix(p.point, centroid_[p.block]);
     if (boundaries_[p.boundary].kind == BoundaryKind::Viscous) {
-      m.own_k[p.block] += (2.0 / dt) * t.transpose() * p.c * t;
+      m.own_k[p.block] = Symmetric6(m.own_k[p.block].full() + (2.0 / dt) * t.transpose() * p.c * t);
       m.own_f[p.block] += t.transpose() * (p.c * (t * (controls_.gg * velocity_[p.block])));
     } else {
       // SBC: the fixed-point sub-matrix without the fixed point's residual
@@ -476,7 +476,7 @@ void World::assemble_contacts(bool all_rows) {
     bool matrix_too = all_rows;
     for (std::size_t r = 0; r < row.size() && !matrix_too; ++r) matrix_too = m.contact_changed[row[r]];
     Mat6& diag = m.system.diagonal(b);
-    if (matrix_too) diag = m.own_k[b];
+    if (matrix_too) diag = m.own_k[b].full();
     Vec6 f = m.own_f[b];
     for (const int i : row) {
       const Contact& c = contacts_[i];

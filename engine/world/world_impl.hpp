@@ -10,6 +10,7 @@
 
 #include "assembly/contact_operator.hpp"
 #include "contact/contact_law.hpp"
+#include "core/symmetric6.hpp"
 #include "solver/linear_solver.hpp"
 #include "world/world.hpp"
 
@@ -45,7 +46,7 @@ struct World::Impl {
   PcgSolver solver;
   std::optional<Preconditioning> preconditioner_kind;
   VecX rhs, solution;
-  std::vector<Mat6> own_k;  // block terms of the diagonal (elastic, inertia, fixed points)
+  std::vector<Symmetric6> own_k;  // block terms of the diagonal (elastic, inertia, fixed points)
   std::vector<Vec6> own_f;  // block terms of the right-hand side
   std::vector<Mat3> elastic;  // per rock material
   std::vector<double> tan_friction;  // tan φ per joint material (the contact law needs it per contact)
