@@ -29,7 +29,7 @@ class Symmetric6 {
     Vec6 y;
     for (int i = 0; i < 6; ++i) {
       double s = 0;
-      for (int j = 0; j < 6; ++j) s += u_[index(i, j)] * x[j];
+      for (int j = 0; j < 6; ++j) s += u_[kIndex[i][j]] * x[j];
       y[i] = s;
     }
     return y;
@@ -37,10 +37,8 @@ class Symmetric6 {
 
  private:
   // Position of (i, j) in the upper triangle stored row by row.
-  static constexpr int index(int i, int j) {
-    if (i > j) return index(j, i);
-    return i * 6 - i * (i - 1) / 2 + (j - i);
-  }
+  static constexpr int kIndex[6][6] = {{0, 1, 2, 3, 4, 5},      {1, 6, 7, 8, 9, 10},     {2, 7, 11, 12, 13, 14},
+                                       {3, 8, 12, 15, 16, 17}, {4, 9, 13, 16, 18, 19}, {5, 10, 14, 17, 19, 20}};
   std::array<double, 21> u_{};
 };
 
