@@ -26,7 +26,7 @@ void ContactOperator::set_contacts(int blocks, std::span<const Contact> contacts
     row_contacts_[fill[blocks_[i].second]++] = static_cast<int>(i);
   }
   kinematics_ = {};
-  stored_valid_ = stored_shaped_ = false;
+  stored_valid_ = stored_shaped_ = products_shaped_ = false;
 }
 
 void ContactOperator::set_kinematics(std::span<const ContactKinematics> kinematics) {
@@ -37,13 +37,53 @@ void ContactOperator::set_kinematics(std::span<const ContactKinematics> kinemati
 
 void ContactOperator::assembled() {
   stored_valid_ = false;
-  if (store_products_) stored();
+  if (store_products_) assemble_products();
+}
+
+void ContactOperator::pairs(std::vector<std::pair<int, int>>& coupled) const {
+  coupled.clear();
+  coupled.reserve(blocks_.size());
+  for (const auto& [v, e] : blocks_) coupled.emplace_back(std::min(v, e), std::max(v, e));
+  std::sort(coupled.begin(), coupled.end());
+  coupled.erase(std::unique(coupled.begin(), coupled.end()), coupled.end());
+}
+
+// Row b writes its diagonal block and its blocks (b, j > b); a contact's
+// coupling lands in the row of its smaller block, oriented from there.
+void ContactOperator::assemble_products() {
+  const int n = rows();
+  if (!products_shaped_) {
+    std::vector<std::pair<int, int>> coupled;
+    pairs(coupled);
+    products_.set_structure(n, coupled);
+    products_shaped_ = true;
+  }
+  parallel_for_each(n, [&](std::size_t bi) {
+    const int b = static_cast<int>(bi);
+    products_.value(products_.diagonal(b)) = diagonal_[b];
+    for (int r = row_start_[b]; r < row_start_[b + 1]; ++r) {
+      const int other = blocks_[row_contacts_[r]].first == b ? blocks_[row_contacts_[r]].second : blocks_[row_contacts_[r]].first;
+      if (other > b) products_.value(products_.find(b, other)).setZero();
+    }
+    for (int r = row_start_[b]; r < row_start_[b + 1]; ++r) {
+      const int i = row_contacts_[r];
+      const Springs& k = springs_[i];
+      const bool vertex_side = blocks_[i].first == b;
+      const int other = vertex_side ? blocks_[i].second : blocks_[i].first;
+      if (other < b || (k.kn == 0 && k.ks == 0)) continue;
+      const ContactKinematics& c = kinematics_[i];
+      Mat6& off = products_.value(products_.find(b, other));
+      const Vec6 &en_self = vertex_side ? c.en_v : c.en_e, &en_other = vertex_side ? c.en_e : c.en_v;
+      const Vec6 &es_self = vertex_side ? c.es_v : c.es_e, &es_other = vertex_side ? c.es_e : c.es_v;
+      off += k.kn * en_self * en_other.transpose();
+      if (k.ks != 0) off += k.ks * es_self * es_other.transpose();
+    }
+  }, 16);
 }
 
 void ContactOperator::multiply_rows(int begin, int end, const VecX& x, VecX& y) const {
   if (store_products_) {
-    DDA_ASSERT(stored_valid_, "ContactOperator: products from a stored matrix not assembled");
-    stored_.multiply_rows(begin, end, x, y);
+    products_.multiply_rows(begin, end, x, y);
     return;
   }
   for (int b = begin; b < end; ++b) {
@@ -68,10 +108,7 @@ const BlockSparseMatrix& ContactOperator::stored() const {
   const int n = rows();
   if (!stored_shaped_) {
     std::vector<std::pair<int, int>> coupled;
-    coupled.reserve(blocks_.size());
-    for (const auto& [v, e] : blocks_) coupled.emplace_back(std::min(v, e), std::max(v, e));
-    std::sort(coupled.begin(), coupled.end());
-    coupled.erase(std::unique(coupled.begin(), coupled.end()), coupled.end());
+    pairs(coupled);
     stored_.set_structure(n, coupled);
     stored_shaped_ = true;
   }

@@ -11,9 +11,10 @@
 // That pays where a solve takes a few CG iterations (wave problems: the
 // assembly, redone every open-close iteration, was a fifth of the step). Where
 // solves take hundreds (quasi-static walls), the product dominates and a
-// stored 6×6 block (one per pair, however many contacts) is read faster than
-// the springs of each contact: store_products(true) assembles the stored
-// matrix with the diagonal and multiplies with it.
+// stored 6×6 block (one per pair, however many contacts, kept once for both
+// orders of the pair) is read faster than the springs of each contact:
+// store_products(true) assembles such a matrix with the diagonal and
+// multiplies with it.
 //
 // Rows are gathered, each by one task, over the contacts that touch the
 // block in contact order: no races and the same sums for any thread count.
@@ -23,6 +24,7 @@
 
 #include "contact/contact_law.hpp"
 #include "solver/block_sparse_matrix.hpp"
+#include "solver/symmetric_block_matrix.hpp"
 
 namespace dda {
 
@@ -41,7 +43,7 @@ class ContactOperator final : public LinearOperator {
   // until the next call (the caller keeps it alive and unmoved).
   void set_kinematics(std::span<const ContactKinematics> kinematics);
 
-  // Multiply with the stored matrix (assembled in assembled()) instead of
+  // Multiply with a stored matrix (assembled in assembled()) instead of
   // matrix-free.
   void store_products(bool on) { store_products_ = on; }
   bool stores_products() const { return store_products_; }
@@ -72,6 +74,11 @@ class ContactOperator final : public LinearOperator {
   std::span<const ContactKinematics> kinematics_;
   bool store_products_ = false;
 
+  void pairs(std::vector<std::pair<int, int>>& coupled) const;  // the block pairs (i < j) of the contact list
+  void assemble_products();
+
+  SymmetricBlockMatrix products_;  // for store_products(true)
+  bool products_shaped_ = false;
   mutable BlockSparseMatrix stored_;
   mutable bool stored_valid_ = false;
   mutable bool stored_shaped_ = false;  // stored_ has this contact list's pattern

@@ -159,9 +159,11 @@ TEST(Solver, MatrixFreeProductEqualsTheStoredMatrix) {
   EXPECT_LE((y_free - y_stored).norm(), 1e-13 * y_stored.norm());
   EXPECT_LE((y_free - dense * x).norm(), 1e-13 * y_stored.norm());
 
+  // Products from the matrix stored once per pair (upper blocks, and the
+  // lower ones read transposed).
   op.store_products(true);
   op.assembled();
   VecX y_via_stored = VecX::Zero(24);
   op.multiply_rows(0, 4, x, y_via_stored);
-  EXPECT_EQ(y_via_stored, y_stored);
+  EXPECT_LE((y_via_stored - y_stored).norm(), 1e-13 * y_stored.norm());
 }
