@@ -48,6 +48,19 @@ void ContactOperator::pairs(std::vector<std::pair<int, int>>& coupled) const {
   coupled.erase(std::unique(coupled.begin(), coupled.end()), coupled.end());
 }
 
+// Adds contact i's springs to the block (b, other) of row b:
+// kn·en_b·en_otherᵀ + ks·es_b·es_otherᵀ.
+void ContactOperator::add_coupling(Mat6& block, int i, int b) const {
+  const Springs& k = springs_[i];
+  if (k.kn == 0 && k.ks == 0) return;  // open
+  const ContactKinematics& c = kinematics_[i];
+  const bool vertex_side = blocks_[i].first == b;
+  const Vec6 &en_self = vertex_side ? c.en_v : c.en_e, &en_other = vertex_side ? c.en_e : c.en_v;
+  const Vec6 &es_self = vertex_side ? c.es_v : c.es_e, &es_other = vertex_side ? c.es_e : c.es_v;
+  block += k.kn * en_self * en_other.transpose();
+  if (k.ks != 0) block += k.ks * es_self * es_other.transpose();
+}
+
 // Row b writes its diagonal block and its blocks (b, j > b); a contact's
 // coupling lands in the row of its smaller block, oriented from there.
 void ContactOperator::assemble_products() {
@@ -62,21 +75,13 @@ void ContactOperator::assemble_products() {
     const int b = static_cast<int>(bi);
     products_.value(products_.diagonal(b)) = diagonal_[b];
     for (int r = row_start_[b]; r < row_start_[b + 1]; ++r) {
-      const int other = blocks_[row_contacts_[r]].first == b ? blocks_[row_contacts_[r]].second : blocks_[row_contacts_[r]].first;
+      const int other = other_block(row_contacts_[r], b);
       if (other > b) products_.value(products_.find(b, other)).setZero();
     }
     for (int r = row_start_[b]; r < row_start_[b + 1]; ++r) {
       const int i = row_contacts_[r];
-      const Springs& k = springs_[i];
-      const bool vertex_side = blocks_[i].first == b;
-      const int other = vertex_side ? blocks_[i].second : blocks_[i].first;
-      if (other < b || (k.kn == 0 && k.ks == 0)) continue;
-      const ContactKinematics& c = kinematics_[i];
-      Mat6& off = products_.value(products_.find(b, other));
-      const Vec6 &en_self = vertex_side ? c.en_v : c.en_e, &en_other = vertex_side ? c.en_e : c.en_v;
-      const Vec6 &es_self = vertex_side ? c.es_v : c.es_e, &es_other = vertex_side ? c.es_e : c.es_v;
-      off += k.kn * en_self * en_other.transpose();
-      if (k.ks != 0) off += k.ks * es_self * es_other.transpose();
+      const int other = other_block(i, b);
+      if (other > b) add_coupling(products_.value(products_.find(b, other)), i, b);
     }
   }, 16);
 }
@@ -118,15 +123,7 @@ const BlockSparseMatrix& ContactOperator::stored() const {
     stored_.value(stored_.diagonal(b)) = diagonal_[b];
     for (int r = row_start_[b]; r < row_start_[b + 1]; ++r) {
       const int i = row_contacts_[r];
-      const Springs& k = springs_[i];
-      if (k.kn == 0 && k.ks == 0) continue;
-      const ContactKinematics& c = kinematics_[i];
-      const bool vertex_side = blocks_[i].first == b;
-      Mat6& off = stored_.value(stored_.find(b, vertex_side ? blocks_[i].second : blocks_[i].first));
-      const Vec6 &en_self = vertex_side ? c.en_v : c.en_e, &en_other = vertex_side ? c.en_e : c.en_v;
-      const Vec6 &es_self = vertex_side ? c.es_v : c.es_e, &es_other = vertex_side ? c.es_e : c.es_v;
-      off += k.kn * en_self * en_other.transpose();
-      if (k.ks != 0) off += k.ks * es_self * es_other.transpose();
+      add_coupling(stored_.value(stored_.find(b, other_block(i, b))), i, b);
     }
   }, 16);
   stored_valid_ = true;

@@ -76,6 +76,8 @@ class ContactOperator final : public LinearOperator {
 
   void pairs(std::vector<std::pair<int, int>>& coupled) const;  // the block pairs (i < j) of the contact list
   void assemble_products();
+  int other_block(int contact, int b) const { return blocks_[contact].first == b ? blocks_[contact].second : blocks_[contact].first; }
+  void add_coupling(Mat6& block, int contact, int b) const;
 
   SymmetricBlockMatrix products_;  // for store_products(true)
   bool products_shaped_ = false;
