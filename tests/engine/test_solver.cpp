@@ -167,3 +167,17 @@ TEST(Solver, MatrixFreeProductEqualsTheStoredMatrix) {
   op.multiply_rows(0, 4, x, y_via_stored);
   EXPECT_LE((y_via_stored - y_stored).norm(), 1e-13 * y_stored.norm());
 }
+
+// The upper-triangle storage of per-block symmetric 6×6 arrays: the full
+// matrix comes back exactly, and the product equals the full one up to the
+// order of the sums (reference: Eigen's Mat6 product, tolerance 1e-15 of |y|).
+TEST(Solver, Symmetric6KeepsTheMatrixAndItsProduct) {
+  Mat6 a;
+  for (int i = 0; i < 6; ++i)
+    for (int j = 0; j < 6; ++j) a(i, j) = 1.0 / (1 + i + j) + (i == j ? 3.0 : 0.0);  // a Hilbert-like SPD matrix
+  const Symmetric6 s(a);
+  EXPECT_EQ(s.full(), a);
+  Vec6 x;
+  x << 1, -2, 3, -4, 5, -6;
+  EXPECT_LE((s * x - a * x).norm(), 1e-15 * (a * x).norm());
+}
