@@ -40,12 +40,19 @@ void ContactOperator::assembled() {
   if (store_products_) assemble_products();
 }
 
-void ContactOperator::pairs(std::vector<std::pair<int, int>>& coupled) const {
-  coupled.clear();
+// Gives a stored form the pattern of this contact list (once per list): one
+// block per pair of blocks in the list, open contacts included, so that the
+// pattern holds for all the open-close iterations of a step.
+template <typename Matrix>
+void ContactOperator::shape(Matrix& matrix, bool& shaped) const {
+  if (shaped) return;
+  std::vector<std::pair<int, int>> coupled;
   coupled.reserve(blocks_.size());
   for (const auto& [v, e] : blocks_) coupled.emplace_back(std::min(v, e), std::max(v, e));
   std::sort(coupled.begin(), coupled.end());
   coupled.erase(std::unique(coupled.begin(), coupled.end()), coupled.end());
+  matrix.set_structure(rows(), coupled);
+  shaped = true;
 }
 
 // Adds contact i's springs to the block (b, other) of row b:
@@ -65,12 +72,7 @@ void ContactOperator::add_coupling(Mat6& block, int i, int b) const {
 // coupling lands in the row of its smaller block, oriented from there.
 void ContactOperator::assemble_products() {
   const int n = rows();
-  if (!products_shaped_) {
-    std::vector<std::pair<int, int>> coupled;
-    pairs(coupled);
-    products_.set_structure(n, coupled);
-    products_shaped_ = true;
-  }
+  shape(products_, products_shaped_);
   parallel_for_each(n, [&](std::size_t bi) {
     const int b = static_cast<int>(bi);
     products_.value(products_.diagonal(b)) = diagonal_[b];
@@ -111,12 +113,7 @@ void ContactOperator::multiply_rows(int begin, int end, const VecX& x, VecX& y) 
 const BlockSparseMatrix& ContactOperator::stored() const {
   if (stored_valid_) return stored_;
   const int n = rows();
-  if (!stored_shaped_) {
-    std::vector<std::pair<int, int>> coupled;
-    pairs(coupled);
-    stored_.set_structure(n, coupled);
-    stored_shaped_ = true;
-  }
+  shape(stored_, stored_shaped_);
   parallel_for_each(n, [&](std::size_t bi) {
     const int b = static_cast<int>(bi);
     for (int e = stored_.row_begin(b); e < stored_.row_end(b); ++e) stored_.value(e).setZero();

@@ -74,7 +74,8 @@ class ContactOperator final : public LinearOperator {
   std::span<const ContactKinematics> kinematics_;
   bool store_products_ = false;
 
-  void pairs(std::vector<std::pair<int, int>>& coupled) const;  // the block pairs (i < j) of the contact list
+  template <typename Matrix>
+  void shape(Matrix& matrix, bool& shaped) const;
   void assemble_products();
   int other_block(int contact, int b) const { return blocks_[contact].first == b ? blocks_[contact].second : blocks_[contact].first; }
   void add_coupling(Mat6& block, int contact, int b) const;
