@@ -101,7 +101,7 @@ void ContactOperator::multiply_rows(int begin, int end, const VecX& x, VecX& y) 
       if (k.kn == 0 && k.ks == 0) continue;  // open
       const ContactKinematics& c = kinematics_[i];
       const bool vertex_side = blocks_[i].first == b;
-      const auto x_other = x.segment<6>(6 * (vertex_side ? blocks_[i].second : blocks_[i].first));
+      const auto x_other = x.segment<6>(6 * other_block(i, b));
       // Row b of k·e eᵀ restricted to the other block: k·e_self·(e_other·x_other).
       s += (k.kn * (vertex_side ? c.en_e : c.en_v).dot(x_other)) * (vertex_side ? c.en_v : c.en_e);
       if (k.ks != 0) s += (k.ks * (vertex_side ? c.es_e : c.es_v).dot(x_other)) * (vertex_side ? c.es_v : c.es_e);

@@ -46,7 +46,6 @@ class ContactOperator final : public LinearOperator {
   // Multiply with a stored matrix (assembled in assembled()) instead of
   // matrix-free.
   void store_products(bool on) { store_products_ = on; }
-  bool stores_products() const { return store_products_; }
 
   // Assembly writes these; call assembled() when done.
   Mat6& diagonal(int b) { return diagonal_[b]; }
