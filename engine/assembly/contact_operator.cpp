@@ -1,15 +1,26 @@
 #include "assembly/contact_operator.hpp"
 
 #include <algorithm>
+#include <atomic>
 
 #include "core/error.hpp"
 #include "core/parallel.hpp"
 
 namespace dda {
 
+namespace {
+// Revision numbers unique across operators (a preconditioner may see several).
+std::uint64_t new_revision() {
+  static std::atomic<std::uint64_t> last{0};
+  return ++last;
+}
+}  // namespace
+
 void ContactOperator::set_contacts(int blocks, std::span<const Contact> contacts) {
   const std::size_t nc = contacts.size();
   diagonal_.resize(blocks);
+  revision_ = new_revision();
+  diagonal_revision_.assign(blocks, revision_);
   blocks_.resize(nc);
   springs_.assign(nc, Springs{});
   row_start_.assign(blocks + 1, 0);
@@ -38,6 +49,7 @@ void ContactOperator::set_kinematics(std::span<const ContactKinematics> kinemati
 void ContactOperator::assembled() {
   stored_valid_ = false;
   if (store_products_) assemble_products();
+  revision_ = new_revision();
 }
 
 // Gives a stored form the pattern of this contact list (once per list): one

@@ -18,6 +18,7 @@
 //
 // Rows are gathered, each by one task, over the contacts that touch the
 // block in contact order: no races and the same sums for any thread count.
+#include <cstdint>
 #include <span>
 #include <utility>
 #include <vector>
@@ -47,8 +48,13 @@ class ContactOperator final : public LinearOperator {
   // matrix-free.
   void store_products(bool on) { store_products_ = on; }
 
-  // Assembly writes these; call assembled() when done.
-  Mat6& diagonal(int b) { return diagonal_[b]; }
+  // Assembly writes these; call assembled() when done. A diagonal block taken
+  // for rewriting gets a new revision number (diagonal_revision), so the
+  // preconditioner redoes only the rows an assembly rewrote.
+  Mat6& rewrite_diagonal(int b) {
+    diagonal_revision_[b] = revision_;
+    return diagonal_[b];
+  }
   Springs& springs(int contact) { return springs_[contact]; }
   void assembled();
   // Contacts touching block b, in ascending contact order.
@@ -59,6 +65,7 @@ class ContactOperator final : public LinearOperator {
   // LinearOperator
   int rows() const override { return static_cast<int>(diagonal_.size()); }
   const Mat6& diagonal_block(int i) const override { return diagonal_[i]; }
+  std::uint64_t diagonal_revision(int i) const override { return diagonal_revision_[i]; }
   void multiply_rows(int begin, int end, const VecX& x, VecX& y) const override;
   // Assembled on the first call after assembled(): one block per pair of
   // blocks in the contact list (open contacts included, so that the pattern
@@ -67,6 +74,8 @@ class ContactOperator final : public LinearOperator {
 
  private:
   std::vector<Mat6> diagonal_;
+  std::vector<std::uint64_t> diagonal_revision_;
+  std::uint64_t revision_ = 0;  // stamped on the diagonal blocks the current assembly rewrites
   std::vector<std::pair<int, int>> blocks_;  // per contact: (vertex block, edge block)
   std::vector<Springs> springs_;
   std::vector<int> row_start_, row_contacts_;

@@ -19,9 +19,14 @@ inline Mat26 displacement_matrix(const Vec2& p, const Vec2& centroid) {
   return t;
 }
 
-// Tᵀ·v for a point p: the generalised force of a point force v.
+// Tᵀ·v for a point p: the generalised force of a point force v. Written out
+// (the same sums as displacement_matrix(p, centroid).transpose() * v without
+// the products by 0 and 1): the contact kinematics take four per contact.
 inline Vec6 displacement_transpose_times(const Vec2& p, const Vec2& centroid, const Vec2& v) {
-  return displacement_matrix(p, centroid).transpose() * v;
+  const double x = p.x() - centroid.x(), y = p.y() - centroid.y();
+  Vec6 f;
+  f << v.x(), v.y(), -y * v.x() + x * v.y(), x * v.x(), y * v.y(), y / 2 * v.x() + x / 2 * v.y();
+  return f;
 }
 
 // ∫ TᵀT dA over the block, from its area and second moments about the
@@ -32,15 +37,28 @@ Mat6 integrated_tt(double area, double sxx, double syy, double sxy);
 
 namespace dda {
 
-// Displacement of the point p under the step solution D, as used to move
-// vertices at the end of a step. The rigid rotation r0 is applied exactly
-// (rotation matrix, not the linearised -r0·y, r0·x of T) so that spinning
-// blocks do not grow; translation and strain are as in T.
-inline Vec2 point_displacement(const Vec2& p, const Vec2& centroid, const Vec6& d) {
-  const double x = p.x() - centroid.x(), y = p.y() - centroid.y();
-  const double c = std::cos(d[2]) - 1.0, s = std::sin(d[2]);
-  return {d[0] + c * x - s * y + d[3] * x + 0.5 * d[5] * y,  //
-          d[1] + s * x + c * y + d[4] * y + 0.5 * d[5] * x};
-}
+// Displacement of the points of one block under its step solution D, as used
+// to move vertices at the end of a step. The rigid rotation r0 is applied
+// exactly (rotation matrix, not the linearised -r0·y, r0·x of T) so that
+// spinning blocks do not grow; translation and strain are as in T. The
+// rotation's cosine and sine are taken once for all the block's points.
+class BlockMotion {
+ public:
+  BlockMotion(const Vec6& d, const Vec2& centroid)
+      : d_(d), centroid_(centroid), cos_minus_1_(std::cos(d[2]) - 1.0), sin_(std::sin(d[2])) {}
+  Vec2 operator()(const Vec2& p) const {
+    const double x = p.x() - centroid_.x(), y = p.y() - centroid_.y();
+    const double c = cos_minus_1_, s = sin_;
+    return {d_[0] + c * x - s * y + d_[3] * x + 0.5 * d_[5] * y,  //
+            d_[1] + s * x + c * y + d_[4] * y + 0.5 * d_[5] * x};
+  }
+
+ private:
+  Vec6 d_;
+  Vec2 centroid_;
+  double cos_minus_1_, sin_;
+};
+
+inline Vec2 point_displacement(const Vec2& p, const Vec2& centroid, const Vec6& d) { return BlockMotion(d, centroid)(p); }
 
 }  // namespace dda

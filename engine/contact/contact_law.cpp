@@ -36,8 +36,8 @@ ContactKinematics contact_kinematics(const BlockPolygons& blocks, std::span<cons
   const Vec2 g1(p2.y() - p3.y(), p3.x() - p2.x());
   const Vec2 g2(p3.y() - p1.y(), p1.x() - p3.x());
   const Vec2 g3(p1.y() - p2.y(), p2.x() - p1.x());
-  k.en_v = displacement_matrix(p1, cv).transpose() * g1 / l;
-  k.en_e = (displacement_matrix(p2, ce).transpose() * g2 + displacement_matrix(p3, ce).transpose() * g3) / l;
+  k.en_v = displacement_transpose_times(p1, cv, g1) / l;
+  k.en_e = (displacement_transpose_times(p2, ce, g2) + displacement_transpose_times(p3, ce, g3)) / l;
 
   // Shear: displacement of the vertex along the edge relative to the
   // reference point p0 on the edge (where it locked, else its projection).
@@ -45,8 +45,8 @@ ContactKinematics contact_kinematics(const BlockPolygons& blocks, std::span<cons
   const double ref = c.ref_valid ? c.ref_param : k.param;
   const Vec2 p0 = p2 + ref * edge;
   k.s0 = (p1 - p0).dot(t);
-  k.es_v = displacement_matrix(p1, cv).transpose() * t;
-  k.es_e = -(displacement_matrix(p0, ce).transpose() * t);
+  k.es_v = displacement_transpose_times(p1, cv, t);
+  k.es_e = -displacement_transpose_times(p0, ce, t);
   return k;
 }
 

@@ -17,6 +17,10 @@ struct BlockPolygons {
   // Vertex k of block b, with k taken modulo the block's vertex count.
   const Vec2& vertex(int b, int k) const {
     const int n = size(b);
+    // Callers mostly pass k in [0, n] (an edge's second vertex is k + 1):
+    // spare them the integer divisions, which cost more than the lookup.
+    if (k >= 0 && k < n) return vertices[start[b] + k];
+    if (k == n) return vertices[start[b]];
     return vertices[start[b] + ((k % n) + n) % n];
   }
 };

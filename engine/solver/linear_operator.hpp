@@ -3,6 +3,8 @@
 // (one per rock block), with its diagonal blocks and the product y = A·x by
 // ranges of block rows. Either stored (BlockSparseMatrix) or matrix-free
 // (the contact springs, assembly/contact_operator.hpp).
+#include <cstdint>
+
 #include "core/types.hpp"
 
 namespace dda {
@@ -14,6 +16,10 @@ class LinearOperator {
   virtual ~LinearOperator() = default;
   virtual int rows() const = 0;  // block rows
   virtual const Mat6& diagonal_block(int i) const = 0;
+  // A number that changes whenever diagonal block i is rewritten, unique
+  // across operators; 0 when not tracked (treat the block as new). Lets a
+  // preconditioner redo only the rows whose diagonal changed.
+  virtual std::uint64_t diagonal_revision(int /*i*/) const { return 0; }
   // (A·x) for block rows [begin, end) written into the same rows of y (sized
   // by the caller); other rows of y are left alone. Rows are independent:
   // ranges may run in parallel, and a row's result never depends on how the

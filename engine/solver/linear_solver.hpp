@@ -52,7 +52,9 @@ class BlockJacobi final : public Preconditioner {
   void apply(const VecX& r, VecX& z) const override;
 
  private:
-  std::vector<std::uint64_t> diagonal_hash_;  // of the blocks inverse_ was made from
+  // Of the diagonal blocks inverse_ was made from: the operator's revision
+  // numbers and a hash of the bits.
+  std::vector<std::uint64_t> revision_, hash_;
   std::vector<Symmetric6> inverse_;
 };
 

@@ -471,12 +471,17 @@ void World::assemble_contacts(bool all_rows) {
     const int b = static_cast<int>(bi);
     const std::span<const int> row = m.system.row_contacts(b);
     // A row none of whose contacts changed state since the last assembly of
-    // this step keeps its diagonal block (it would come out the same to the
-    // bit); its right-hand side is redone (friction follows the latest N).
-    bool matrix_too = all_rows;
-    for (std::size_t r = 0; r < row.size() && !matrix_too; ++r) matrix_too = m.contact_changed[row[r]];
-    Mat6& diag = m.system.diagonal(b);
-    if (matrix_too) diag = m.own_k[b].full();
+    // this step keeps its diagonal block and, without a sliding contact (whose
+    // friction follows the latest N), its right-hand side: either would come
+    // out the same to the bit.
+    bool matrix_too = all_rows, sliding = false;
+    for (const int i : row) {
+      matrix_too = matrix_too || m.contact_changed[i];
+      sliding = sliding || contacts_[i].state == ContactState::Sliding;
+    }
+    if (!matrix_too && !sliding) return;
+    Mat6* diag = matrix_too ? &m.system.rewrite_diagonal(b) : nullptr;
+    if (matrix_too) *diag = m.own_k[b].full();
     Vec6 f = m.own_f[b];
     for (const int i : row) {
       const Contact& c = contacts_[i];
@@ -492,13 +497,13 @@ void World::assemble_contacts(bool all_rows) {
       // other block stays with the operator (assembly/contact_operator.hpp).
       if (matrix_too) {
         const Vec6 kn_en = springs.kn * en_self;
-        for (int j = 0; j < 6; ++j) diag.col(j) += en_self[j] * kn_en;
+        for (int j = 0; j < 6; ++j) diag->col(j) += en_self[j] * kn_en;
       }
       f -= springs.kn * k.d0 * en_self;
       if (c.state == ContactState::Locked) {
         if (matrix_too) {
           const Vec6 ks_es = springs.ks * es_self;
-          for (int j = 0; j < 6; ++j) diag.col(j) += es_self[j] * ks_es;
+          for (int j = 0; j < 6; ++j) diag->col(j) += es_self[j] * ks_es;
         }
         f -= springs.ks * m.iterate[i].s0 * es_self;
       } else {
@@ -544,10 +549,9 @@ bool World::check_contacts() {
 double World::largest_step_displacement() const {
   const Impl& m = *impl_;
   return parallel_max<double>(block_count(), 0.0, [&](std::size_t b) {
-    const Vec6 d = m.solution.segment<6>(6 * b);
+    const BlockMotion motion(m.solution.segment<6>(6 * b), centroid_[b]);
     double worst = 0;
-    for (int v = vertex_start_[b]; v < vertex_start_[b + 1]; ++v)
-      worst = std::max(worst, point_displacement(vertices_[v], centroid_[b], d).norm());
+    for (int v = vertex_start_[b]; v < vertex_start_[b + 1]; ++v) worst = std::max(worst, motion(vertices_[v]).norm());
     return worst;
   });
 }
@@ -559,13 +563,13 @@ BlockId World::first_inverted_block() const {
   const std::size_t n = block_count();
   std::vector<char> inverted(n, 0);
   parallel_for_each(n, [&](std::size_t b) {
-    const Vec6 d = m.solution.segment<6>(6 * b);
+    const BlockMotion motion(m.solution.segment<6>(6 * b), centroid_[b]);
     double twice = 0;
     const int first = vertex_start_[b], count = vertex_start_[b + 1] - first;
-    const Vec2 o = vertices_[first] + point_displacement(vertices_[first], centroid_[b], d);
+    const Vec2 o = vertices_[first] + motion(vertices_[first]);
     for (int k = 1; k + 1 < count; ++k) {
-      const Vec2 p = vertices_[first + k] + point_displacement(vertices_[first + k], centroid_[b], d) - o;
-      const Vec2 q = vertices_[first + k + 1] + point_displacement(vertices_[first + k + 1], centroid_[b], d) - o;
+      const Vec2 p = vertices_[first + k] + motion(vertices_[first + k]) - o;
+      const Vec2 q = vertices_[first + k + 1] + motion(vertices_[first + k + 1]) - o;
       twice += cross(p, q);
     }
     inverted[b] = !(twice > 0);
@@ -604,7 +608,8 @@ void World::update(double dt) {
   const double gg = controls_.gg;
   parallel_for_each(n, [&](std::size_t b) {
     const Vec6 d = d_of(static_cast<BlockId>(b));
-    for (int v = vertex_start_[b]; v < vertex_start_[b + 1]; ++v) vertices_[v] += point_displacement(vertices_[v], centroid_[b], d);
+    const BlockMotion motion(d, centroid_[b]);
+    for (int v = vertex_start_[b]; v < vertex_start_[b + 1]; ++v) vertices_[v] += motion(vertices_[v]);
     const PolygonMoments pm = polygon_moments(std::span<const Vec2>(vertices_).subspan(vertex_start_[b], vertex_start_[b + 1] - vertex_start_[b]));
     centroid_[b] = pm.centroid;
     area_[b] = pm.area;

@@ -130,7 +130,7 @@ TEST(Solver, MatrixFreeProductEqualsTheStoredMatrix) {
   op.set_contacts(4, contacts);
   for (int b = 0; b < 4; ++b) {
     const Vec6 d = random6();
-    op.diagonal(b) = Mat6::Identity() * 10 + d * d.transpose();
+    op.rewrite_diagonal(b) = Mat6::Identity() * 10 + d * d.transpose();
   }
   for (std::size_t i = 0; i < contacts.size(); ++i) {
     op.springs(static_cast<int>(i)).kn = contacts[i].state == ContactState::Open ? 0.0 : 3.0 + i;
@@ -180,4 +180,44 @@ TEST(Solver, Symmetric6KeepsTheMatrixAndItsProduct) {
   Vec6 x;
   x << 1, -2, 3, -4, 5, -6;
   EXPECT_LE((s * x - a * x).norm(), 1e-15 * (a * x).norm());
+}
+
+// Block-Jacobi redoes only the rows an assembly rewrote (the operator's
+// revision numbers), and every rewritten row: after a second assembly that
+// rewrites one diagonal block, the preconditioner applies the new inverse
+// there and keeps the old ones elsewhere.
+TEST(Solver, BlockJacobiFollowsRewrittenDiagonalBlocks) {
+  std::vector<Contact> contacts(1);
+  contacts[0].vblock = 0;
+  contacts[0].eblock = 1;
+  ContactOperator op;
+  op.set_contacts(3, contacts);
+  for (int b = 0; b < 3; ++b) op.rewrite_diagonal(b) = Mat6::Identity() * (b + 1);
+  std::vector<ContactKinematics> kinematics(1);
+  op.set_kinematics(kinematics);
+  op.assembled();
+  BlockJacobi jacobi;
+  jacobi.setup(op);
+  const VecX ones = VecX::Ones(18);
+  VecX z;
+  jacobi.apply(ones, z);
+  EXPECT_DOUBLE_EQ(z[6], 0.5);
+  EXPECT_DOUBLE_EQ(z[12], 1.0 / 3.0);
+
+  op.rewrite_diagonal(1) = Mat6::Identity() * 8;  // row 1 changes, rows 0 and 2 are kept
+  op.assembled();
+  EXPECT_NE(op.diagonal_revision(1), op.diagonal_revision(0));
+  jacobi.setup(op);
+  jacobi.apply(ones, z);
+  EXPECT_DOUBLE_EQ(z[0], 1.0);
+  EXPECT_DOUBLE_EQ(z[6], 0.125);
+  EXPECT_DOUBLE_EQ(z[12], 1.0 / 3.0);
+
+  // A stored matrix does not track revisions: every row is inverted again.
+  BlockSparseMatrix stored;
+  stored.set_structure(3, {});
+  for (int b = 0; b < 3; ++b) stored.value(stored.diagonal(b)) = Mat6::Identity() * 4;
+  jacobi.setup(stored);
+  jacobi.apply(ones, z);
+  for (int k = 0; k < 18; ++k) EXPECT_DOUBLE_EQ(z[k], 0.25);
 }
