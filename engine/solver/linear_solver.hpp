@@ -7,6 +7,7 @@
 #include <functional>
 #include <memory>
 #include <span>
+#include <utility>
 #include <vector>
 
 #include "core/symmetric6.hpp"
@@ -43,6 +44,11 @@ class Preconditioner {
   virtual void set_block_centroids(std::span<const Vec2> /*centroids*/) {}
   virtual void setup(const LinearOperator& a) = 0;
   virtual void apply(const VecX& r, VecX& z) const = 0;
+  // A preconditioner whose block row i of z depends on row i of r alone
+  // (block-Jacobi) can be applied by ranges of rows, inside the PCG's own
+  // passes over the vectors: one parallel pass fewer per iteration.
+  virtual bool applies_by_rows() const { return false; }
+  virtual void apply_rows(std::size_t /*begin*/, std::size_t /*end*/, const VecX& /*r*/, VecX& /*z*/) const {}
 };
 
 // Block-Jacobi: the inverse of each 6×6 diagonal block (Cholesky).
@@ -50,6 +56,8 @@ class BlockJacobi final : public Preconditioner {
  public:
   void setup(const LinearOperator& a) override;
   void apply(const VecX& r, VecX& z) const override;
+  bool applies_by_rows() const override { return true; }
+  void apply_rows(std::size_t begin, std::size_t end, const VecX& r, VecX& z) const override;
 
  private:
   // Of the diagonal blocks inverse_ was made from: the operator's revision
@@ -74,11 +82,14 @@ class PcgSolver final : public LinearSolver {
  private:
   template <typename F>
   double chunked_sum(std::size_t blocks, F&& f);
+  // Two sums at once: f(begin, end, first, second) adds the chunk's shares.
+  template <typename F>
+  std::pair<double, double> chunked_sums(std::size_t blocks, F&& f);
 
   const LinearOperator* a_ = nullptr;
   std::unique_ptr<Preconditioner> pre_;
   VecX r_, z_, p_, ap_;          // reused between solves: no allocation in the step loop
-  std::vector<double> partial_;  // per-chunk partial sums of the fused kernels
+  std::vector<double> partial_, partial2_;  // per-chunk partial sums of the fused kernels
 };
 
 // Sparse direct LDLᵀ (Eigen). A test oracle, not used by the engine's step.

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <tuple>
 
 #include "core/error.hpp"
 #include "core/parallel.hpp"
@@ -99,7 +100,11 @@ void BlockJacobi::setup(const LinearOperator& a) {
 
 void BlockJacobi::apply(const VecX& r, VecX& z) const {
   z.resize(r.size());
-  parallel_for_each(inverse_.size(), [&](std::size_t i) { z.segment<6>(6 * i) = inverse_[i] * Vec6(r.segment<6>(6 * i)); }, 128);
+  parallel_for_each(inverse_.size(), [&](std::size_t i) { apply_rows(i, i + 1, r, z); }, 128);
+}
+
+void BlockJacobi::apply_rows(std::size_t begin, std::size_t end, const VecX& r, VecX& z) const {
+  for (std::size_t i = begin; i < end; ++i) z.segment<6>(6 * i) = inverse_[i] * Vec6(r.segment<6>(6 * i));
 }
 
 PcgSolver::PcgSolver(std::unique_ptr<Preconditioner> pre) : pre_(std::move(pre)) {}
@@ -126,6 +131,23 @@ double PcgSolver::chunked_sum(std::size_t blocks, F&& f) {
   double total = 0;
   for (std::size_t c = 0; c < chunks; ++c) total += partial_[c];
   return total;
+}
+
+template <typename F>
+std::pair<double, double> PcgSolver::chunked_sums(std::size_t blocks, F&& f) {
+  const std::size_t chunks = (blocks + kPcgChunk - 1) / kPcgChunk;
+  partial_.resize(chunks);
+  partial2_.resize(chunks);
+  parallel_for_each(chunks, [&](std::size_t c) {
+    partial_[c] = partial2_[c] = 0;
+    f(c * kPcgChunk, std::min(blocks, (c + 1) * kPcgChunk), partial_[c], partial2_[c]);
+  }, 1);
+  double first = 0, second = 0;
+  for (std::size_t c = 0; c < chunks; ++c) {
+    first += partial_[c];
+    second += partial2_[c];
+  }
+  return {first, second};
 }
 
 SolveReport PcgSolver::solve(const VecX& b, VecX& x) {
@@ -166,6 +188,8 @@ SolveReport PcgSolver::solve(const VecX& b, VecX& x) {
     report.converged = true;
     return report;
   }
+  const bool by_rows = pre_->applies_by_rows();
+  if (by_rows) z_.resize(n);
   pre_->apply(r_, z_);
   double rz = chunked_sum(blocks, [&](std::size_t begin, std::size_t end) {
     const std::size_t o = 6 * begin, len = 6 * (end - begin);
@@ -185,13 +209,27 @@ SolveReport PcgSolver::solve(const VecX& b, VecX& x) {
       return report;  // not converged: breakdown (matrix or preconditioner not SPD, or NaN)
     }
     const double alpha = rz / pap;
-    // x += α·p, r −= α·Ap, and ‖r‖² in one pass.
-    rr = chunked_sum(blocks, [&](std::size_t begin, std::size_t end) {
-      const std::size_t o = 6 * begin, len = 6 * (end - begin);
-      x.segment(o, len) += alpha * p_.segment(o, len);
-      r_.segment(o, len) -= alpha * ap_.segment(o, len);
-      return r_.segment(o, len).squaredNorm();
-    });
+    // x += α·p, r −= α·Ap, and ‖r‖² in one pass; with a preconditioner
+    // applied by rows, z = M⁻¹r and rᵀz in the same pass (the same sums, in
+    // the same chunks, as the separate passes below).
+    double rz_next = 0;
+    if (by_rows) {
+      std::tie(rr, rz_next) = chunked_sums(blocks, [&](std::size_t begin, std::size_t end, double& r2, double& r_z) {
+        const std::size_t o = 6 * begin, len = 6 * (end - begin);
+        x.segment(o, len) += alpha * p_.segment(o, len);
+        r_.segment(o, len) -= alpha * ap_.segment(o, len);
+        r2 = r_.segment(o, len).squaredNorm();
+        pre_->apply_rows(begin, end, r_, z_);
+        r_z = r_.segment(o, len).dot(z_.segment(o, len));
+      });
+    } else {
+      rr = chunked_sum(blocks, [&](std::size_t begin, std::size_t end) {
+        const std::size_t o = 6 * begin, len = 6 * (end - begin);
+        x.segment(o, len) += alpha * p_.segment(o, len);
+        r_.segment(o, len) -= alpha * ap_.segment(o, len);
+        return r_.segment(o, len).squaredNorm();
+      });
+    }
     report.relative_residual = std::sqrt(rr) / bnorm;
     if (monitor) monitor(it, report.relative_residual);
     if (!std::isfinite(rr)) {
@@ -202,11 +240,13 @@ SolveReport PcgSolver::solve(const VecX& b, VecX& x) {
       report.converged = true;
       return report;
     }
-    pre_->apply(r_, z_);
-    const double rz_next = chunked_sum(blocks, [&](std::size_t begin, std::size_t end) {
-      const std::size_t o = 6 * begin, len = 6 * (end - begin);
-      return r_.segment(o, len).dot(z_.segment(o, len));
-    });
+    if (!by_rows) {
+      pre_->apply(r_, z_);
+      rz_next = chunked_sum(blocks, [&](std::size_t begin, std::size_t end) {
+        const std::size_t o = 6 * begin, len = 6 * (end - begin);
+        return r_.segment(o, len).dot(z_.segment(o, len));
+      });
+    }
     const double beta = rz_next / rz;
     rz = rz_next;
     parallel_for_each(blocks, [&](std::size_t i) { p_.segment<6>(6 * i) = z_.segment<6>(6 * i) + beta * p_.segment<6>(6 * i); }, kPcgChunk);
