@@ -480,8 +480,7 @@ void World::assemble_contacts(bool all_rows) {
       sliding = sliding || contacts_[i].state == ContactState::Sliding;
     }
     if (!matrix_too && !sliding) return;
-    Mat6* diag = matrix_too ? &m.system.rewrite_diagonal(b) : nullptr;
-    if (matrix_too) *diag = m.own_k[b].full();
+    Symmetric6 diag = m.own_k[b];
     Vec6 f = m.own_f[b];
     for (const int i : row) {
       const Contact& c = contacts_[i];
@@ -492,19 +491,13 @@ void World::assemble_contacts(bool all_rows) {
       const Vec6& en_self = is_vertex_block ? k.en_v : k.en_e;
       const Vec6& es_self = is_vertex_block ? k.es_v : k.es_e;
       // Normal spring on dn = d0 + en·D (and, locked, shear spring on
-      // ds = s0 + es·D): kn·en enᵀ (+ ks·es esᵀ) on the diagonal, written
-      // column by column (each a 6-vector update); the coupling to the
-      // other block stays with the operator (assembly/contact_operator.hpp).
-      if (matrix_too) {
-        const Vec6 kn_en = springs.kn * en_self;
-        for (int j = 0; j < 6; ++j) diag->col(j) += en_self[j] * kn_en;
-      }
+      // ds = s0 + es·D): kn·en enᵀ (+ ks·es esᵀ) on the diagonal (its upper
+      // triangle); the coupling to the other block stays with the operator
+      // (assembly/contact_operator.hpp).
+      if (matrix_too) diag.add_outer(springs.kn, en_self);
       f -= springs.kn * k.d0 * en_self;
       if (c.state == ContactState::Locked) {
-        if (matrix_too) {
-          const Vec6 ks_es = springs.ks * es_self;
-          for (int j = 0; j < 6; ++j) diag->col(j) += es_self[j] * ks_es;
-        }
+        if (matrix_too) diag.add_outer(springs.ks, es_self);
         f -= springs.ks * m.iterate[i].s0 * es_self;
       } else {
         // Sliding: friction N·tanφ against the sliding direction, with N
@@ -514,6 +507,7 @@ void World::assemble_contacts(bool all_rows) {
       }
     }
     m.rhs.segment<6>(6 * b) = f;
+    if (matrix_too) m.system.rewrite_diagonal(b) = diag.full();
   }, 16);
   m.system.set_kinematics(m.kinematics);
   m.system.assembled();
