@@ -115,22 +115,13 @@ void PcgSolver::set_operator(const LinearOperator& a) {
 }
 
 // Fused vector kernels. Each works over fixed chunks of kPcgChunk blocks,
-// f(begin, end) returning the chunk's share of a dot product; the shares are
-// summed in chunk order: the same bits for any thread count, and no
+// f(begin, end) returning the chunk's share of a dot product (or, in
+// chunked_sums, writing its shares of two); the shares are summed in chunk
+// order: the same bits for any thread count, and no
 // allocation (partial_ is reused). The mat-vec runs chunk by chunk inside
 // them, so its rows are still in cache for the dot product.
 namespace {
 constexpr std::size_t kPcgChunk = 64;
-}
-
-template <typename F>
-double PcgSolver::chunked_sum(std::size_t blocks, F&& f) {
-  const std::size_t chunks = (blocks + kPcgChunk - 1) / kPcgChunk;
-  partial_.resize(chunks);
-  parallel_for_each(chunks, [&](std::size_t c) { partial_[c] = f(c * kPcgChunk, std::min(blocks, (c + 1) * kPcgChunk)); }, 1);
-  double total = 0;
-  for (std::size_t c = 0; c < chunks; ++c) total += partial_[c];
-  return total;
 }
 
 template <typename F>
@@ -148,6 +139,11 @@ std::pair<double, double> PcgSolver::chunked_sums(std::size_t blocks, F&& f) {
     second += partial2_[c];
   }
   return {first, second};
+}
+
+template <typename F>
+double PcgSolver::chunked_sum(std::size_t blocks, F&& f) {
+  return chunked_sums(blocks, [&](std::size_t begin, std::size_t end, double& share, double&) { share = f(begin, end); }).first;
 }
 
 SolveReport PcgSolver::solve(const VecX& b, VecX& x) {
@@ -189,7 +185,6 @@ SolveReport PcgSolver::solve(const VecX& b, VecX& x) {
     return report;
   }
   const bool by_rows = pre_->applies_by_rows();
-  if (by_rows) z_.resize(n);
   pre_->apply(r_, z_);
   double rz = chunked_sum(blocks, [&](std::size_t begin, std::size_t end) {
     const std::size_t o = 6 * begin, len = 6 * (end - begin);
