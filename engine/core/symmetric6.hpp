@@ -32,6 +32,9 @@ class Symmetric6 {
       for (int j = i; j < 6; ++j) u_[n++] += e[j] * ke[i];
   }
 
+  // The upper triangle, row by row.
+  const std::array<double, 21>& upper() const { return u_; }
+
   // (this)·x, row by row, the terms of a row in column order.
   Vec6 operator*(const Vec6& x) const {
     Vec6 y;

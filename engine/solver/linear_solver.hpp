@@ -59,10 +59,14 @@ class BlockJacobi final : public Preconditioner {
   bool applies_by_rows() const override { return true; }
   void apply_rows(std::size_t begin, std::size_t end, const VecX& r, VecX& z) const override;
 
+  // Relative change of a diagonal block below which its inverse is kept.
+  double refresh_tolerance = 1e-4;
+
  private:
-  // Of the diagonal blocks inverse_ was made from: the operator's revision
-  // numbers and a hash of the bits.
-  std::vector<std::uint64_t> revision_, hash_;
+  // The diagonal blocks inverse_ was made from, and the operator's revision
+  // numbers of the blocks last looked at.
+  std::vector<Symmetric6> basis_;
+  std::vector<std::uint64_t> revision_;
   std::vector<Symmetric6> inverse_;
 };
 

@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
-#include <cstring>
 #include <tuple>
 
 #include "core/error.hpp"
@@ -56,32 +55,35 @@ bool invert_spd6(const Mat6& a, Mat6& inverse) {
 }
 
 namespace {
-// FNV-1a over the bits of the 36 entries.
-std::uint64_t hash_of(const Mat6& m) {
-  std::uint64_t h = 1469598103934665603ull;
-  for (int k = 0; k < 36; ++k) {
-    std::uint64_t bits;
-    std::memcpy(&bits, m.data() + k, sizeof bits);
-    h = (h ^ bits) * 1099511628211ull;
-  }
-  return h;
+// Whether the preconditioner block made from `basis` still serves for `now`:
+// every entry within kRefreshTolerance of the largest entry of basis.
+bool close_enough(const Symmetric6& basis, const Mat6& now, double tolerance) {
+  const auto& u = basis.upper();
+  double largest = 0;
+  for (const double v : u) largest = std::max(largest, std::abs(v));
+  const double allowed = tolerance * largest;
+  for (int i = 0, k = 0; i < 6; ++i)
+    for (int j = i; j < 6; ++j, ++k)
+      if (!(std::abs(now(i, j) - u[k]) <= allowed)) return false;
+  return true;
 }
 }  // namespace
 
 void BlockJacobi::setup(const LinearOperator& a) {
-  // Re-invert only the diagonal blocks that changed. A row the operator did
-  // not rewrite since the last setup (its revision number holds) is skipped
-  // outright: between the open-close iterations of a step that is every row
-  // whose contacts kept their state. A rewritten row is compared by a 64-bit
-  // hash of its bits: in wave problems the blocks the wave has not reached
-  // yet come out the same step after step. A collision would only leave a
-  // stale, still SPD, preconditioner row, which slows the CG a little but
-  // cannot change what it converges to.
+  // Re-invert only the diagonal blocks that changed enough to matter. A row
+  // the operator did not rewrite since the last setup (its revision number
+  // holds) is skipped outright: between the open-close iterations of a step
+  // that is every row whose contacts kept their state. A rewritten row keeps
+  // its inverse while every entry stays within refresh_tolerance (relative to
+  // the largest entry) of the block that inverse was made from: in wave
+  // problems a block's terms drift by 1e-6 or less a step, while a contact
+  // that closes, opens or starts to slide changes them at once. A preconditioner
+  // a little off only changes how fast the CG converges, never to what.
   const std::size_t n = a.rows();
   const bool fresh = revision_.size() != n;  // a new matrix shape: invert every block
   if (fresh) {
     revision_.assign(n, 0);
-    hash_.resize(n);
+    basis_.resize(n);
     inverse_.resize(n);
   }
   parallel_for_each(n, [&](std::size_t i) {
@@ -89,9 +91,8 @@ void BlockJacobi::setup(const LinearOperator& a) {
     if (!fresh && revision != 0 && revision == revision_[i]) return;
     revision_[i] = revision;
     const Mat6& d = a.diagonal_block(static_cast<int>(i));
-    const std::uint64_t h = hash_of(d);
-    if (!fresh && h == hash_[i]) return;
-    hash_[i] = h;
+    if (!fresh && close_enough(basis_[i], d, refresh_tolerance)) return;
+    basis_[i] = Symmetric6(d);
     Mat6 inverse;
     invert_spd6(d, inverse);
     inverse_[i] = Symmetric6(inverse);

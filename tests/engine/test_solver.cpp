@@ -183,9 +183,9 @@ TEST(Solver, Symmetric6KeepsTheMatrixAndItsProduct) {
 }
 
 // Block-Jacobi redoes only the rows an assembly rewrote (the operator's
-// revision numbers), and every rewritten row: after a second assembly that
-// rewrites one diagonal block, the preconditioner applies the new inverse
-// there and keeps the old ones elsewhere.
+// revision numbers) and changed by more than its refresh tolerance: after a
+// second assembly that rewrites one diagonal block, the preconditioner applies
+// the new inverse there and keeps the old ones elsewhere.
 TEST(Solver, BlockJacobiFollowsRewrittenDiagonalBlocks) {
   std::vector<Contact> contacts(1);
   contacts[0].vblock = 0;
@@ -213,7 +213,17 @@ TEST(Solver, BlockJacobiFollowsRewrittenDiagonalBlocks) {
   EXPECT_DOUBLE_EQ(z[6], 0.125);
   EXPECT_DOUBLE_EQ(z[12], 1.0 / 3.0);
 
-  // A stored matrix does not track revisions: every row is inverted again.
+  // A block that drifts by less than refresh_tolerance keeps its inverse; one
+  // that drifts by more gets a new one.
+  op.rewrite_diagonal(0) = Mat6::Identity() * (1 + 0.5 * jacobi.refresh_tolerance);
+  op.rewrite_diagonal(2) = Mat6::Identity() * 3 * (1 + 2 * jacobi.refresh_tolerance);
+  op.assembled();
+  jacobi.setup(op);
+  jacobi.apply(ones, z);
+  EXPECT_DOUBLE_EQ(z[0], 1.0);
+  EXPECT_DOUBLE_EQ(z[12], 1.0 / (3 * (1 + 2 * jacobi.refresh_tolerance)));
+
+  // A stored matrix does not track revisions: every row is compared again.
   BlockSparseMatrix stored;
   stored.set_structure(3, {});
   for (int b = 0; b < 3; ++b) stored.value(stored.diagonal(b)) = Mat6::Identity() * 4;
