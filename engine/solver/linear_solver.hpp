@@ -28,6 +28,12 @@ class LinearSolver {
   virtual void set_operator(const LinearOperator& a) = 0;
   // Solves A·x = b; x holds the initial guess on entry.
   virtual SolveReport solve(const VecX& b, VecX& x) = 0;
+  // Solves again after a change confined to some rows: x is what the last
+  // solve returned (converged, untouched since), and A and b differ from that
+  // solve's only in the block rows flagged in `changed_rows`. A solver may
+  // then recompute the starting residual on those rows alone. The default
+  // solves from scratch.
+  virtual SolveReport resolve(const VecX& b, VecX& x, std::span<const char> /*changed_rows*/) { return solve(b, x); }
 
   double tolerance = 1e-10;  // on ‖b − A·x‖ / ‖b‖
   int max_iterations = 1000;
@@ -81,9 +87,15 @@ class PcgSolver final : public LinearSolver {
   void set_operator(const LinearOperator& a) override;
   Preconditioner& preconditioner() { return *pre_; }
   void set_preconditioner(std::unique_ptr<Preconditioner> pre) { pre_ = std::move(pre); }
-  SolveReport solve(const VecX& b, VecX& x) override;
+  SolveReport solve(const VecX& b, VecX& x) override { return solve_from(b, x, {}); }
+  // Keeps the last solve's residual on the rows not flagged (one mat-vec
+  // fewer per open-close iteration after the first).
+  SolveReport resolve(const VecX& b, VecX& x, std::span<const char> changed_rows) override {
+    return solve_from(b, x, changed_rows);
+  }
 
  private:
+  SolveReport solve_from(const VecX& b, VecX& x, std::span<const char> changed_rows);
   template <typename F>
   double chunked_sum(std::size_t blocks, F&& f);
   // Two sums at once: f(begin, end, first, second) adds the chunk's shares.
@@ -93,6 +105,7 @@ class PcgSolver final : public LinearSolver {
   const LinearOperator* a_ = nullptr;
   std::unique_ptr<Preconditioner> pre_;
   VecX r_, z_, p_, ap_;          // reused between solves: no allocation in the step loop
+  bool residual_valid_ = false;  // r_ = b − A·x for the x the last solve returned (converged)
   std::vector<double> partial_, partial2_;  // per-chunk partial sums of the fused kernels
 };
 

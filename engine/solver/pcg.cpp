@@ -147,12 +147,17 @@ double PcgSolver::chunked_sum(std::size_t blocks, F&& f) {
   return chunked_sums(blocks, [&](std::size_t begin, std::size_t end, double& share, double&) { share = f(begin, end); }).first;
 }
 
-SolveReport PcgSolver::solve(const VecX& b, VecX& x) {
+SolveReport PcgSolver::solve_from(const VecX& b, VecX& x, std::span<const char> changed_rows) {
   DDA_ASSERT(a_ != nullptr, "PcgSolver::solve before set_operator");
   const LinearOperator& a = *a_;
   SolveReport report;
   const std::size_t n = static_cast<std::size_t>(b.size());
   const std::size_t blocks = n / 6;
+  // The last solve's residual serves where neither A nor b changed (it is the
+  // recursively updated one, within round-off of b − A·x).
+  const bool reuse = residual_valid_ && !changed_rows.empty() && changed_rows.size() == blocks &&
+                     static_cast<std::size_t>(x.size()) == n && static_cast<std::size_t>(r_.size()) == n;
+  residual_valid_ = false;
   if (x.size() != b.size()) x = VecX::Zero(b.size());
   r_.resize(n);
   p_.resize(n);
@@ -169,12 +174,21 @@ SolveReport PcgSolver::solve(const VecX& b, VecX& x) {
     report.converged = true;
     return report;
   }
-  // r = b − A·x, and ‖r‖².
+  // r = b − A·x (on the changed rows only, when the last residual serves), and ‖r‖².
   double rr = chunked_sum(blocks, [&](std::size_t begin, std::size_t end) {
-    a.multiply_rows(static_cast<int>(begin), static_cast<int>(end), x, r_);
-    auto r = r_.segment(6 * begin, 6 * (end - begin));
-    r = b.segment(6 * begin, 6 * (end - begin)) - r;
-    return r.squaredNorm();
+    for (std::size_t i = begin; i < end;) {
+      if (reuse && !changed_rows[i]) {
+        ++i;
+        continue;
+      }
+      std::size_t stop = i + 1;  // a run of rows to recompute
+      while (stop < end && !(reuse && !changed_rows[stop])) ++stop;
+      a.multiply_rows(static_cast<int>(i), static_cast<int>(stop), x, r_);
+      auto r = r_.segment(6 * i, 6 * (stop - i));
+      r = b.segment(6 * i, 6 * (stop - i)) - r;
+      i = stop;
+    }
+    return r_.segment(6 * begin, 6 * (end - begin)).squaredNorm();
   });
   report.relative_residual = std::sqrt(rr) / bnorm;
   if (!std::isfinite(rr)) {
@@ -182,7 +196,7 @@ SolveReport PcgSolver::solve(const VecX& b, VecX& x) {
     return report;
   }
   if (report.relative_residual <= tolerance) {
-    report.converged = true;
+    report.converged = residual_valid_ = true;
     return report;
   }
   const bool by_rows = pre_->applies_by_rows();
@@ -233,7 +247,7 @@ SolveReport PcgSolver::solve(const VecX& b, VecX& x) {
       return report;
     }
     if (report.relative_residual <= tolerance) {
-      report.converged = true;
+      report.converged = residual_valid_ = true;
       return report;
     }
     if (!by_rows) {

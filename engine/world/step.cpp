@@ -309,6 +309,7 @@ int World::solve_step(double dt) {
   m.system.store_products(long_solves);
   bool settled = false;
   bool tightening = false;
+  bool first_solve = true;
   for (int it = 0; it < controls_.open_close_limit && !settled; ++it) {
     ++m.open_close_iterations;
     m.solver.tolerance = tightening ? tight : loose;
@@ -319,7 +320,11 @@ int World::solve_step(double dt) {
     t0 = Clock::now();
     m.solver.preconditioner().set_block_centroids(centroid_);
     m.solver.set_operator(m.system);
-    const SolveReport report = m.solver.solve(m.rhs, m.solution);
+    // After the first solve only the reassembled rows changed: the solver
+    // keeps the last residual elsewhere.
+    const SolveReport report = first_solve ? m.solver.solve(m.rhs, m.solution)
+                                           : m.solver.resolve(m.rhs, m.solution, m.row_reassembled);
+    first_solve = false;
     m.cg_iterations += report.iterations;
     m.t_solve += seconds_since(t0);
     if (!report.finite || !m.solution.allFinite()) {
@@ -467,6 +472,7 @@ void World::assemble_contacts(bool all_rows) {
   }, 1024);
   // Each block row is gathered by one task, adding its contacts in contact
   // order: no races, and the same sums whatever the thread count.
+  m.row_reassembled.resize(n);
   parallel_for_each(n, [&](std::size_t bi) {
     const int b = static_cast<int>(bi);
     const std::span<const int> row = m.system.row_contacts(b);
@@ -479,6 +485,7 @@ void World::assemble_contacts(bool all_rows) {
       matrix_too = matrix_too || m.contact_changed[i];
       sliding = sliding || contacts_[i].state == ContactState::Sliding;
     }
+    m.row_reassembled[b] = matrix_too || sliding;
     if (!matrix_too && !sliding) return;
     Symmetric6 diag = m.own_k[b];
     Vec6 f = m.own_f[b];

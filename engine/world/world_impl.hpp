@@ -55,6 +55,7 @@ struct World::Impl {
   std::vector<ContactKinematics> kinematics;
   std::vector<ContactIterate> iterate;
   std::vector<char> contact_changed;  // by the last open-close check (its rows are reassembled)
+  std::vector<char> row_reassembled;  // per block row: rewritten by the last assembly (matrix or right-hand side)
   std::vector<ContactIterationState> saved_states;  // at the start of the step (for a redo)
 
   bool first_detection = true;  // contacts found before the first step are intact joints
