@@ -489,9 +489,9 @@ void World::assemble_contacts(bool all_rows) {
     // friction follows the latest N), its right-hand side: either would come
     // out the same to the bit.
     bool matrix_too = all_rows, sliding = false;
-    for (const int i : row) {
-      matrix_too = matrix_too || m.contact_changed[i];
-      sliding = sliding || contacts_[i].state == ContactState::Sliding;
+    for (std::size_t r = 0; r < row.size() && !matrix_too; ++r) {
+      matrix_too = m.contact_changed[row[r]];
+      sliding = sliding || contacts_[row[r]].state == ContactState::Sliding;
     }
     m.row_reassembled[b] = matrix_too || sliding;
     if (!matrix_too && !sliding) return;
