@@ -56,7 +56,7 @@ bool invert_spd6(const Mat6& a, Mat6& inverse) {
 
 namespace {
 // Whether the preconditioner block made from `basis` still serves for `now`:
-// every entry within kRefreshTolerance of the largest entry of basis.
+// every entry within `tolerance` times the largest entry of basis.
 bool close_enough(const Symmetric6& basis, const Mat6& now, double tolerance) {
   const auto& u = basis.upper();
   double largest = 0;

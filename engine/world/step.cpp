@@ -298,8 +298,8 @@ int World::solve_step(double dt) {
   // step's acceleration would give, (1 + gg)·v·Δt − d_last (with
   // v = 2·d_last/Δt − gg·v_before, that is d = gg·v·Δt + a·Δt²/2 with the
   // last step's a): blast(2) takes 10 % fewer CG iterations than from d_last.
-  // Long solves (quasi-static walls): the previous step's displacements, which
-  // the extrapolation made worse there.
+  // Long solves (quasi-static walls): the previous step's displacements (an
+  // earlier trial found extrapolation raised their CG iterations).
   const double gg = controls_.gg;
   parallel_for_each(n, [&](std::size_t b) {
     m.solution.segment<6>(6 * b) = long_solves ? last_displacement_[b] : Vec6((1 + gg) * dt * velocity_[b] - last_displacement_[b]);
