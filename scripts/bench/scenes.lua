@@ -50,7 +50,7 @@ function scenes.blast(h, threads)
   -- Slivers (where joints pass close to the chamber corners) are merged: crushed
   -- by the chamber-wall targets they would force tiny steps.
   local b = blast_model.build{ size = 100, spacing = h, controls = { threads = threads }, min_area = 0.01 * h * h }
-  b.wall:target{ velocity = { {0, 0}, {0.5e-3, 2.03}, {2.5e-3, 0} } }
+  blast_model.load(b, "dhi")
   b.outer:fix()
   return b.m
 end

@@ -108,16 +108,7 @@ local function run_case(cfg)
   print(string.format("blast %s: %g m model, %d blocks, chamber wall %d edges (%.1f m), t_end = %g s",
                       tag, cfg.size, #M.blocks, #M.wall, M.wall:length(), cfg.t_end))
 
-  -- loads on the chamber wall
-  local times = { {0, 0}, {0.5e-3, 1}, {2.5e-3, 0} }
-  local function scaled(a) local r = {} for i, p in ipairs(times) do r[i] = {p[1], a * p[2]} end return r end
-  if cfg.load == "shi" then
-    M.wall:pressure(scaled(30.23e6))
-  elseif cfg.load == "dhi" then
-    M.wall:target{ velocity = scaled(2.03) }
-  else
-    error("load must be dhi or shi, got " .. tostring(cfg.load))
-  end
+  blast_model.load(M, cfg.load)
 
   -- outer boundary
   if cfg.boundary == "fixed" then M.outer:fix()

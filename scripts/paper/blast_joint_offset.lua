@@ -33,18 +33,12 @@ local FIELD_PPV = 0.95  -- m/s at MP1, paper Fig. 14b
 local function run(offset, load)
   local M = blast_model.build{ size = 100, spacing = spacing, joint_origin = {offset, 0},
                                min_area = 0.01 * spacing * spacing }
-  local times = { {0, 0}, {0.5e-3, 1}, {2.5e-3, 0} }
-  local function scaled(a) local r = {} for i, p in ipairs(times) do r[i] = {p[1], a * p[2]} end return r end
-  if load == "shi" then M.wall:pressure(scaled(30.23e6)) else M.wall:target{ velocity = scaled(2.03) } end
+  blast_model.load(M, load)
   M.outer:fix()
   local mon = M.m:monitor{ at = {0, 8}, fields = {"vy"}, csv = false }
   M.m:run{ time = t_end }
-  local ppv, t_peak = 0, 0
-  local t = mon:times()
-  for i, v in ipairs(mon:series("vy")) do
-    if math.abs(v) > ppv then ppv, t_peak = math.abs(v), t[i] end
-  end
-  return ppv, t_peak, #M.blocks
+  local vy, t_peak = mon:peak("vy")
+  return math.abs(vy), t_peak, #M.blocks
 end
 
 local rows = {}

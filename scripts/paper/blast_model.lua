@@ -6,6 +6,7 @@
 --   local M = blast_model.build{ size = 100 }
 --   -- M.m (model), M.rock, M.joint, M.chamber (hole), M.blocks, M.info,
 --   -- M.wall (chamber wall edges), M.outer (outer boundary edges), M.h (size/2)
+--   blast_model.load(M, "dhi")   -- or "shi": the paper's load on the chamber wall
 --
 -- Square jointed rock mass centred at the origin (the detonation centre), two
 -- joint sets at 45 and 135 deg, 2 m spacing, and the 8 m x 4 m chamber
@@ -49,6 +50,22 @@ function blast_model.build(opts)
   local blocks, info = m:generate(opts.min_area and { min_area = opts.min_area } or nil)
   return { m = m, rock = rock, joint = joint, chamber = chamber, blocks = blocks, info = info,
            wall = chamber:edges(), outer = m:edges{ boundary = "domain" }, h = h, size = size }
+end
+
+-- The blast load on the chamber wall of a built model M (paper Fig. 13):
+-- "shi", a triangular pressure 0 -> 30.23 MPa at 0.5 ms -> 0 at 2.5 ms, or
+-- "dhi", a triangular particle velocity with the same times and a 2.03 m/s
+-- peak, normal to each wall edge (integrated to a displacement history).
+function blast_model.load(M, kind)
+  local times = { {0, 0}, {0.5e-3, 1}, {2.5e-3, 0} }
+  local function scaled(a) local r = {} for i, p in ipairs(times) do r[i] = {p[1], a * p[2]} end return r end
+  if kind == "shi" then
+    M.wall:pressure(scaled(30.23e6))
+  elseif kind == "dhi" then
+    M.wall:target{ velocity = scaled(2.03) }
+  else
+    error("load must be dhi or shi, got " .. tostring(kind), 2)
+  end
 end
 
 return blast_model
