@@ -2,7 +2,8 @@
 --
 -- Models:  one scene of scenes.lua: --set scene=wall --set n=40 | scene=blast
 --          --set h=2 | scene=bar; --set threads=1|2; --set steps=10 timed steps
---          after --set warmup=2 untimed ones.
+--          after --set warmup=2 untimed ones; --set pre=block_jacobi|multigrid
+--          forces a preconditioner (default: the scene's, auto).
 -- Run:     build/dda run scripts/bench/bench.lua --set scene=wall --set n=20 --set threads=2 [--set csv=FILE]
 --          (scripts/bench/run.sh runs the whole table, one process per row so
 --          that each row's peak memory is its own).
@@ -20,6 +21,7 @@ local threads = dda.param("threads", 1)
 local steps = dda.param("steps", 10)
 local warmup = dda.param("warmup", 2)
 local csv = dda.param("csv", "")
+local pre = dda.param("pre", "")  -- preconditioner; "" keeps the scene's (auto)
 
 local m, name
 if scene == "wall" then
@@ -34,6 +36,7 @@ else
   error("unknown scene '" .. tostring(scene) .. "' (wall, blast, bar)")
 end
 
+if pre ~= "" then m:controls{ preconditioner = pre } end
 m:step(warmup)
 local sum = { t_detect = 0, t_assemble = 0, t_solve = 0, t_check = 0, t_update = 0, t_total = 0,
               open_close_iterations = 0, cg_iterations = 0, step_cuts = 0 }
