@@ -61,7 +61,7 @@ StepStats World::step() {
     stats.t_solve = m.t_solve;
     stats.t_check = m.t_check;
     stats.dt = dt_;
-    stats.max_displacement_ratio = largest_step_displacement() / (controls_.g2 * half_height_);
+    stats.max_displacement_ratio = m.largest_displacement / (controls_.g2 * half_height_);
 
     t0 = Clock::now();
     update(dt_);
@@ -363,10 +363,11 @@ int World::solve_step(double dt) {
     }
   }
   if (!settled) return static_cast<int>(Rejection::OpenCloseUnsettled);
-  const double largest = m.largest_displacement = largest_step_displacement();
+  const auto [largest, inverted] = check_block_motion();
+  m.largest_displacement = largest;
   if (largest > controls_.g2 * half_height_) return static_cast<int>(Rejection::DisplacementTooLarge);
   if (largest > contact_range() / 2.5) return static_cast<int>(Rejection::BeyondContactRange);
-  if ((m.inverted_block = first_inverted_block()) >= 0) return static_cast<int>(Rejection::BlockInverted);
+  if ((m.inverted_block = inverted) >= 0) return static_cast<int>(Rejection::BlockInverted);
   if (deepest_penetration() > controls_.g2 * half_height_) return static_cast<int>(Rejection::PenetrationTooDeep);
   return static_cast<int>(Rejection::None);
 }
@@ -555,36 +556,35 @@ bool World::check_contacts() {
   return any_changed != 0;
 }
 
-double World::largest_step_displacement() const {
-  const Impl& m = *impl_;
-  return parallel_max<double>(block_count(), 0.0, [&](std::size_t b) {
-    const BlockMotion motion(m.solution.segment<6>(6 * b), centroid_[b]);
-    double worst = 0;
-    for (int v = vertex_start_[b]; v < vertex_start_[b + 1]; ++v) worst = std::max(worst, motion(vertices_[v]).norm());
-    return worst;
-  });
-}
-
 // A block whose updated outline would have zero or negative area (a sliver
 // crushed by stiff springs, say): the step must not be accepted.
-BlockId World::first_inverted_block() const {
+std::pair<double, BlockId> World::check_block_motion() const {
   const Impl& m = *impl_;
   const std::size_t n = block_count();
-  std::vector<char> inverted(n, 0);
+  m.block_worst_displacement.resize(n);
+  m.block_inverted.resize(n);
   parallel_for_each(n, [&](std::size_t b) {
     const BlockMotion motion(m.solution.segment<6>(6 * b), centroid_[b]);
-    double twice = 0;
     const int first = vertex_start_[b], count = vertex_start_[b + 1] - first;
-    const Vec2 o = vertices_[first] + motion(vertices_[first]);
+    const Vec2 moved_first = motion(vertices_[first]), moved_second = motion(vertices_[first + 1]);
+    double worst = std::max(moved_first.norm(), moved_second.norm());
+    const Vec2 o = vertices_[first] + moved_first;
+    Vec2 p = vertices_[first + 1] + moved_second - o;
+    double twice = 0;  // twice the moved outline's area, as a fan from its first vertex
     for (int k = 1; k + 1 < count; ++k) {
-      const Vec2 p = vertices_[first + k] + motion(vertices_[first + k]) - o;
-      const Vec2 q = vertices_[first + k + 1] + motion(vertices_[first + k + 1]) - o;
+      const Vec2 moved = motion(vertices_[first + k + 1]);
+      worst = std::max(worst, moved.norm());
+      const Vec2 q = vertices_[first + k + 1] + moved - o;
       twice += cross(p, q);
+      p = q;
     }
-    inverted[b] = !(twice > 0);
+    m.block_worst_displacement[b] = worst;
+    m.block_inverted[b] = !(twice > 0);
   }, 64);
-  const auto it = std::find(inverted.begin(), inverted.end(), 1);
-  return it == inverted.end() ? -1 : static_cast<BlockId>(it - inverted.begin());
+  double largest = 0;
+  for (const double w : m.block_worst_displacement) largest = std::max(largest, w);
+  const auto it = std::find(m.block_inverted.begin(), m.block_inverted.end(), 1);
+  return {largest, it == m.block_inverted.end() ? -1 : static_cast<BlockId>(it - m.block_inverted.begin())};
 }
 
 double World::deepest_penetration() const {

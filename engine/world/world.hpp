@@ -216,9 +216,11 @@ class World {
   void assemble_point_terms(double dt);  // loads, fixed points, targets, boundaries at t + Δt
   void assemble_contacts(bool all_rows);  // block terms + contact springs and friction (all rows, or those whose contacts changed)
   bool check_contacts();          // open-close decision; true when a contact changed
-  double largest_step_displacement() const;
+  // The solve's block motions, in one pass over the vertices: the largest
+  // vertex displacement, and the first block whose moved outline would have
+  // zero or negative area (-1: none).
+  std::pair<double, BlockId> check_block_motion() const;
   double deepest_penetration() const;
-  BlockId first_inverted_block() const;
   void update(double dt);         // move vertices, stresses, velocities, contacts; advance time
 
   Controls controls_;

@@ -67,6 +67,8 @@ struct World::Impl {
   Rejection last_rejection = Rejection::None;
   double largest_displacement = 0;  // of the last solve's vertices (widens the automatic contact range)
   BlockId inverted_block = -1;  // the first block the last rejected attempt would have turned inside out
+  mutable std::vector<double> block_worst_displacement;  // check_block_motion's, per block
+  mutable std::vector<char> block_inverted;
 
   int open_close_iterations = 0, cg_iterations = 0;
   double t_assemble = 0, t_solve = 0, t_check = 0;

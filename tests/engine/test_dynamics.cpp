@@ -31,6 +31,29 @@ TEST(Dynamics, FreeFallIsExactForConstantAcceleration) {
   EXPECT_LT(w.block_stress(b).norm(), 1e-3);
 }
 
+TEST(Dynamics, StepDisplacementAgainstTheG2Bound) {
+  // Reference: a free block's first step from rest moves every vertex by
+  // g·Δt²/2 (4.905e-4 m at Δt = 1e-2 s), which the step reports against the
+  // g2 bound g2 × half the model height (1e-3 × 0.5 m): ratio 0.981. In the
+  // second step the vertices would move by 1.5 g·Δt² (3× the bound): the step
+  // is cut, and the cut is what brings the ratio under 1.
+  World w;
+  const int rock = w.add_rock_material(test::granite());
+  w.add_block(test::rectangle(0, 10, 1, 1), rock);
+  const double g = 9.81, dt = 1e-2;
+  w.controls().gravity = Vec2(0, -g);
+  w.controls().g1 = dt;
+  w.controls().g2 = 1e-3;
+  const StepStats first = w.step();
+  EXPECT_EQ(first.step_cuts, 0);
+  EXPECT_NEAR(first.max_displacement_ratio, 0.5 * g * dt * dt / (1e-3 * 0.5), 1e-9);
+  const StepStats second = w.step();
+  EXPECT_GT(second.step_cuts, 0);
+  EXPECT_NE(second.cut_reason.find("g2 bound"), std::string::npos) << second.cut_reason;
+  EXPECT_LE(second.max_displacement_ratio, 1.0);
+  EXPECT_GT(second.max_displacement_ratio, 0.0);
+}
+
 namespace {
 
 // A 1 m × 0.5 m block on a fixed 20 m incline at `alpha` degrees.
