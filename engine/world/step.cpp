@@ -563,16 +563,20 @@ std::pair<double, BlockId> World::check_block_motion() const {
   const std::size_t n = block_count();
   m.block_worst_displacement.resize(n);
   m.block_inverted.resize(n);
+  m.vertex_motion.resize(vertices_.size());
   parallel_for_each(n, [&](std::size_t b) {
     const BlockMotion motion(m.solution.segment<6>(6 * b), centroid_[b]);
     const int first = vertex_start_[b], count = vertex_start_[b + 1] - first;
     const Vec2 moved_first = motion(vertices_[first]), moved_second = motion(vertices_[first + 1]);
+    m.vertex_motion[first] = moved_first;
+    m.vertex_motion[first + 1] = moved_second;
     double worst = std::max(moved_first.norm(), moved_second.norm());
     const Vec2 o = vertices_[first] + moved_first;
     Vec2 p = vertices_[first + 1] + moved_second - o;
     double twice = 0;  // twice the moved outline's area, as a fan from its first vertex
     for (int k = 1; k + 1 < count; ++k) {
       const Vec2 moved = motion(vertices_[first + k + 1]);
+      m.vertex_motion[first + k + 1] = moved;
       worst = std::max(worst, moved.norm());
       const Vec2 q = vertices_[first + k + 1] + moved - o;
       twice += cross(p, q);
@@ -617,8 +621,8 @@ void World::update(double dt) {
   const double gg = controls_.gg;
   parallel_for_each(n, [&](std::size_t b) {
     const Vec6 d = d_of(static_cast<BlockId>(b));
-    const BlockMotion motion(d, centroid_[b]);
-    for (int v = vertex_start_[b]; v < vertex_start_[b + 1]; ++v) vertices_[v] += motion(vertices_[v]);
+    // The vertices' motion as the accepted solve's checks computed it.
+    for (int v = vertex_start_[b]; v < vertex_start_[b + 1]; ++v) vertices_[v] += m.vertex_motion[v];
     const PolygonMoments pm = polygon_moments(std::span<const Vec2>(vertices_).subspan(vertex_start_[b], vertex_start_[b + 1] - vertex_start_[b]));
     centroid_[b] = pm.centroid;
     area_[b] = pm.area;

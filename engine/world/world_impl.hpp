@@ -69,6 +69,7 @@ struct World::Impl {
   BlockId inverted_block = -1;  // the first block the last rejected attempt would have turned inside out
   mutable std::vector<double> block_worst_displacement;  // check_block_motion's, per block
   mutable std::vector<char> block_inverted;
+  mutable std::vector<Vec2> vertex_motion;  // check_block_motion's, per vertex: what update() adds
 
   int open_close_iterations = 0, cg_iterations = 0;
   double t_assemble = 0, t_solve = 0, t_check = 0;
