@@ -556,10 +556,12 @@ bool World::check_contacts() {
   return any_changed != 0;
 }
 
-// A block whose updated outline would have zero or negative area (a sliver
-// crushed by stiff springs, say): the step must not be accepted.
-std::pair<double, BlockId> World::check_block_motion() const {
-  const Impl& m = *impl_;
+// Moves every vertex with its block's solved displacement (once: update()
+// reuses the motion). A step whose largest vertex motion exceeds the g2 bound
+// must be cut, and so must one in which a block's moved outline has zero or
+// negative area (a sliver crushed by stiff springs, say).
+std::pair<double, BlockId> World::check_block_motion() {
+  Impl& m = *impl_;
   const std::size_t n = block_count();
   m.block_worst_displacement.resize(n);
   m.block_inverted.resize(n);

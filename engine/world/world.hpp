@@ -218,8 +218,8 @@ class World {
   bool check_contacts();          // open-close decision; true when a contact changed
   // The solve's block motions, in one pass over the vertices: the largest
   // vertex displacement, and the first block whose moved outline would have
-  // zero or negative area (-1: none).
-  std::pair<double, BlockId> check_block_motion() const;
+  // zero or negative area (-1: none). Keeps each vertex's motion for update().
+  std::pair<double, BlockId> check_block_motion();
   double deepest_penetration() const;
   void update(double dt);         // move vertices, stresses, velocities, contacts; advance time
 

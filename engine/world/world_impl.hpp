@@ -67,9 +67,12 @@ struct World::Impl {
   Rejection last_rejection = Rejection::None;
   double largest_displacement = 0;  // of the last solve's vertices (widens the automatic contact range)
   BlockId inverted_block = -1;  // the first block the last rejected attempt would have turned inside out
-  mutable std::vector<double> block_worst_displacement;  // check_block_motion's, per block
-  mutable std::vector<char> block_inverted;
-  mutable std::vector<Vec2> vertex_motion;  // check_block_motion's, per vertex: what update() adds
+  // check_block_motion's: per block, its largest vertex displacement and
+  // whether its outline turned inside out; per vertex, its motion in the
+  // solve (what update() adds once the step is accepted).
+  std::vector<double> block_worst_displacement;
+  std::vector<char> block_inverted;
+  std::vector<Vec2> vertex_motion;
 
   int open_close_iterations = 0, cg_iterations = 0;
   double t_assemble = 0, t_solve = 0, t_check = 0;
