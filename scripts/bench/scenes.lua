@@ -7,10 +7,10 @@
 --                    cohesion or tension, gravity, dt = 1e-3 s, g2 = 0.001,
 --                    g0 = 50E, open-close limit 8. N = 10, 20, 40 give 211, 821
 --                    and 3,241 blocks. Quasi-static as in Shi's static analysis:
---                    no velocity is carried into the next step (gg = 0). (Tables
---                    before 2026-11-22 21:50 UTC ran the walls with gg = 1:
---                    wall(40) then took 5.5 open-close iterations per step in its
---                    first steps against 3.3, and about 15 % longer.)
+--                    no velocity is carried into the next step (gg = 0). (The
+--                    tables in bench/results before 20261122-215514 ran the walls
+--                    with gg = 1: wall(40) then took 5.5 open-close iterations per
+--                    step in its first steps against 3.3, and about 15 % longer.)
 --          blast(h)  the paper's Section 4 model (100 m square, sets at 45 and
 --                    135 deg with spacing h, chamber, DHI load on the chamber wall,
 --                    blocks under 0.01 h^2 merged into a neighbour).
