@@ -563,10 +563,9 @@ bool World::check_contacts() {
 std::pair<double, BlockId> World::check_block_motion() {
   Impl& m = *impl_;
   const std::size_t n = block_count();
-  m.block_worst_displacement.resize(n);
   m.block_inverted.resize(n);
   m.vertex_motion.resize(vertices_.size());
-  parallel_for_each(n, [&](std::size_t b) {
+  const double largest = parallel_max<double>(n, 0.0, [&](std::size_t b) {
     const BlockMotion motion(m.solution.segment<6>(6 * b), centroid_[b]);
     const int first = vertex_start_[b], count = vertex_start_[b + 1] - first;
     const Vec2 moved_first = motion(vertices_[first]), moved_second = motion(vertices_[first + 1]);
@@ -584,11 +583,9 @@ std::pair<double, BlockId> World::check_block_motion() {
       twice += cross(p, q);
       p = q;
     }
-    m.block_worst_displacement[b] = worst;
     m.block_inverted[b] = !(twice > 0);
-  }, 64);
-  double largest = 0;
-  for (const double w : m.block_worst_displacement) largest = std::max(largest, w);
+    return worst;
+  });
   const auto it = std::find(m.block_inverted.begin(), m.block_inverted.end(), 1);
   return {largest, it == m.block_inverted.end() ? -1 : static_cast<BlockId>(it - m.block_inverted.begin())};
 }

@@ -65,12 +65,11 @@ struct World::Impl {
   double detected_range = 0;
   long detections = 0;
   Rejection last_rejection = Rejection::None;
-  double largest_displacement = 0;  // of the last solve's vertices (widens the automatic contact range)
+  double largest_displacement = 0;  // of the last solve's vertices (the step's g2 ratio; widens the automatic contact range)
   BlockId inverted_block = -1;  // the first block the last rejected attempt would have turned inside out
-  // check_block_motion's: per block, its largest vertex displacement and
-  // whether its outline turned inside out; per vertex, its motion in the
-  // solve (what update() adds once the step is accepted).
-  std::vector<double> block_worst_displacement;
+  // check_block_motion's: per block, whether its outline turned inside out;
+  // per vertex, its motion in the solve (what update() adds once the step is
+  // accepted).
   std::vector<char> block_inverted;
   std::vector<Vec2> vertex_motion;
 
