@@ -87,7 +87,7 @@ void ContactOperator::assemble_products() {
   shape(products_, products_shaped_);
   parallel_for_each(n, [&](std::size_t bi) {
     const int b = static_cast<int>(bi);
-    products_.value(products_.diagonal(b)) = diagonal_[b];
+    products_.value(products_.diagonal(b)) = diagonal_[b].full();
     for (int r = row_start_[b]; r < row_start_[b + 1]; ++r) {
       const int other = other_block(row_contacts_[r], b);
       if (other > b) products_.value(products_.find(b, other)).setZero();
@@ -106,7 +106,7 @@ void ContactOperator::multiply_rows(int begin, int end, const VecX& x, VecX& y) 
     return;
   }
   for (int b = begin; b < end; ++b) {
-    Vec6 s = diagonal_[b] * x.segment<6>(6 * b);
+    Vec6 s = diagonal_[b] * Vec6(x.segment<6>(6 * b));
     for (int r = row_start_[b]; r < row_start_[b + 1]; ++r) {
       const int i = row_contacts_[r];
       const Springs& k = springs_[i];
@@ -129,7 +129,7 @@ const BlockSparseMatrix& ContactOperator::stored() const {
   parallel_for_each(n, [&](std::size_t bi) {
     const int b = static_cast<int>(bi);
     for (int e = stored_.row_begin(b); e < stored_.row_end(b); ++e) stored_.value(e).setZero();
-    stored_.value(stored_.diagonal(b)) = diagonal_[b];
+    stored_.value(stored_.diagonal(b)) = diagonal_[b].full();
     for (int r = row_start_[b]; r < row_start_[b + 1]; ++r) {
       const int i = row_contacts_[r];
       add_coupling(stored_.value(stored_.find(b, other_block(i, b))), i, b);

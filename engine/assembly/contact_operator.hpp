@@ -24,6 +24,7 @@
 #include <vector>
 
 #include "contact/contact_law.hpp"
+#include "core/symmetric6.hpp"
 #include "solver/block_sparse_matrix.hpp"
 #include "solver/symmetric_block_matrix.hpp"
 
@@ -51,7 +52,7 @@ class ContactOperator final : public LinearOperator {
   // Assembly writes these; call assembled() when done. A diagonal block taken
   // for rewriting gets a new revision number (diagonal_revision), so the
   // preconditioner redoes only the rows an assembly rewrote.
-  Mat6& rewrite_diagonal(int b) {
+  Symmetric6& rewrite_diagonal(int b) {
     diagonal_revision_[b] = revision_;
     return diagonal_[b];
   }
@@ -64,7 +65,7 @@ class ContactOperator final : public LinearOperator {
 
   // LinearOperator
   int rows() const override { return static_cast<int>(diagonal_.size()); }
-  const Mat6& diagonal_block(int i) const override { return diagonal_[i]; }
+  Mat6 diagonal_block(int i) const override { return diagonal_[i].full(); }
   std::uint64_t diagonal_revision(int i) const override { return diagonal_revision_[i]; }
   void multiply_rows(int begin, int end, const VecX& x, VecX& y) const override;
   // Assembled on the first call after assembled(): one block per pair of
@@ -73,7 +74,9 @@ class ContactOperator final : public LinearOperator {
   const BlockSparseMatrix& stored() const override;
 
  private:
-  std::vector<Mat6> diagonal_;
+  // Upper triangles (21 numbers, not 36): the mat-vec of wave problems on
+  // 10^5 blocks waits for memory, and this is one of the arrays it reads.
+  std::vector<Symmetric6> diagonal_;
   std::vector<std::uint64_t> diagonal_revision_;
   std::uint64_t revision_ = 0;  // stamped on the diagonal blocks the current assembly rewrites
   std::vector<std::pair<int, int>> blocks_;  // per contact: (vertex block, edge block)

@@ -38,7 +38,7 @@ class BlockSparseMatrix final : public LinearOperator {
   void multiply(const VecX& x, VecX& y) const;
 
   // LinearOperator
-  const Mat6& diagonal_block(int i) const override { return values_[diag_[i]]; }
+  Mat6 diagonal_block(int i) const override { return values_[diag_[i]]; }
   void multiply_rows(int begin, int end, const VecX& x, VecX& y) const override;
   const BlockSparseMatrix& stored() const override { return *this; }
 

@@ -15,7 +15,7 @@ class LinearOperator {
  public:
   virtual ~LinearOperator() = default;
   virtual int rows() const = 0;  // block rows
-  virtual const Mat6& diagonal_block(int i) const = 0;
+  virtual Mat6 diagonal_block(int i) const = 0;
   // A number that changes whenever diagonal block i is rewritten, unique
   // across operators; 0 when not tracked (treat the block as new). Lets a
   // preconditioner redo only the rows whose diagonal changed.

@@ -90,7 +90,7 @@ void BlockJacobi::setup(const LinearOperator& a) {
     const std::uint64_t revision = a.diagonal_revision(static_cast<int>(i));
     if (!fresh && revision != 0 && revision == revision_[i]) return;
     revision_[i] = revision;
-    const Mat6& d = a.diagonal_block(static_cast<int>(i));
+    const Mat6 d = a.diagonal_block(static_cast<int>(i));
     if (!fresh && close_enough(basis_[i], d, refresh_tolerance)) return;
     basis_[i] = Symmetric6(d);
     Mat6 inverse;

@@ -523,7 +523,7 @@ void World::assemble_contacts(bool all_rows) {
       }
     }
     m.rhs.segment<6>(6 * b) = f;
-    if (matrix_too) m.system.rewrite_diagonal(b) = diag.full();
+    if (matrix_too) m.system.rewrite_diagonal(b) = diag;
   }, 16);
   m.system.set_kinematics(m.kinematics);
   m.system.assembled();
