@@ -7,7 +7,7 @@
 //   ./build/bench/bench_engine --solver-only        # the linear solver alone, cold solves
 //
 // Scenes (built with World calls, as the Lua scene scripts do):
-//   wall(N)  quasi-static brick wall: N columns of 1 m × 0.5 m bricks, 2N rows
+//   wall(N)  quasi-static brick wall (gg = 0): N columns of 1 m × 0.5 m bricks, 2N rows
 //            in running bond (half bricks at alternate row ends) on a base 1 m
 //            thick held by three fixed points; ρ = 2600, E = 5 GPa, ν = 0.25,
 //            plane stress, friction 30°, gravity, Δt = 1e-3 s, g2 = 0.001,
