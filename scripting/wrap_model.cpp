@@ -15,7 +15,7 @@ namespace dda::script {
 
 #define DDA_CONTROL_KEYS                                                                                 \
   "plane", "g0", "g1", "g2", "gg", "shear_ratio", "open_close_limit", "contact_tolerance", "contact_range",             \
-      "fixed_point_factor", "gravity", "cut_factor", "max_step_cuts", "cg_tolerance", "cg_open_close_tolerance", "preconditioner",   \
+      "fixed_point_factor", "gravity", "cut_factor", "max_step_cuts", "cg_tolerance", "cg_open_close_tolerance", "jacobi_refresh_tolerance", "preconditioner",   \
       "cg_max_iterations", "threads"
 
 void parse_controls(const Options& o, Controls& c) {
@@ -57,6 +57,11 @@ void parse_controls(const Options& o, Controls& c) {
   }
   c.cg_tolerance = o.positive("cg_tolerance", c.cg_tolerance);
   c.cg_open_close_tolerance = o.positive("cg_open_close_tolerance", c.cg_open_close_tolerance);
+  if (o.has("jacobi_refresh_tolerance")) {
+    c.jacobi_refresh_tolerance = o.number("jacobi_refresh_tolerance");
+    if (!(c.jacobi_refresh_tolerance >= 0 && c.jacobi_refresh_tolerance < 1))
+      fail(call, ": option 'jacobi_refresh_tolerance' must lie in [0, 1), got ", c.jacobi_refresh_tolerance);
+  }
   if (o.has("preconditioner")) {
     const std::string p = o.string("preconditioner");
     if (p == "auto")
@@ -107,6 +112,7 @@ void push_controls(lua_State* L, const Controls& c) {
   integer("max_step_cuts", c.max_step_cuts);
   num("cg_tolerance", c.cg_tolerance);
   num("cg_open_close_tolerance", c.cg_open_close_tolerance);
+  num("jacobi_refresh_tolerance", c.jacobi_refresh_tolerance);
   lua_pushstring(L, c.preconditioner == Preconditioning::Auto          ? "auto"
                     : c.preconditioner == Preconditioning::BlockJacobi ? "block_jacobi"
                                                                        : "multigrid");

@@ -194,6 +194,7 @@ void World::resolve_controls() {
     m.solver.set_preconditioner(make_preconditioner(kind));
     m.preconditioner_kind = kind;
   }
+  if (auto* jacobi = dynamic_cast<BlockJacobi*>(&m.solver.preconditioner())) jacobi->refresh_tolerance = c.jacobi_refresh_tolerance;
   m.tan_friction.resize(joints_.size());
   for (std::size_t j = 0; j < joints_.size(); ++j) m.tan_friction[j] = std::tan(deg_to_rad(joints_[j].friction_deg));
   m.solver.max_iterations = c.cg_max_iterations > 0 ? c.cg_max_iterations : static_cast<int>(60 * block_count() + 100);

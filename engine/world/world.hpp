@@ -57,6 +57,11 @@ struct Controls {
   // always tightened to cg_tolerance); = cg_tolerance: off.
   double cg_open_close_tolerance = 1e-4;
   Preconditioning preconditioner = Preconditioning::Auto;
+  // Block-Jacobi keeps a block's inverse while every entry of the diagonal
+  // block stays within this fraction (of its largest entry) of the block the
+  // inverse was made from. Only how fast the CG converges depends on it,
+  // never to what; 0: invert every rewritten block anew.
+  double jacobi_refresh_tolerance = 1e-4;
   int cg_max_iterations = 0;        // 0 → 10 × unknowns + 100
   int threads = 0;                  // 0 → every core
 };

@@ -262,6 +262,22 @@ TEST_F(LuaApi, MaterialsAreReadableAndWritable) {
   EXPECT_NE(error_of("rock.colour = 1").find("rock: unknown field 'colour'"), std::string::npos);
 }
 
+// Solver controls: readable, writable and checked (the engine test
+// Solver.JacobiRefreshToleranceReachesThePreconditioner shows the effect).
+TEST_F(LuaApi, SolverControlsAreReadableWritableAndChecked) {
+  run("m = dda.model{ jacobi_refresh_tolerance = 0 }\n"
+      "r0 = m:controls().jacobi_refresh_tolerance\n"
+      "m:controls{ jacobi_refresh_tolerance = 0.01, cg_tolerance = 1e-9 }\n"
+      "r1 = m:controls().jacobi_refresh_tolerance\n"
+      "t1 = m:controls().cg_tolerance\n");
+  EXPECT_EQ(number("r0"), 0);
+  EXPECT_EQ(number("r1"), 0.01);
+  EXPECT_EQ(number("t1"), 1e-9);
+  EXPECT_NE(error_of("m:controls{ jacobi_refresh_tolerance = 1 }").find("'jacobi_refresh_tolerance' must lie in [0, 1), got 1"),
+            std::string::npos);
+  EXPECT_NE(error_of("m:controls{ jacobi_refresh_tolerance = -0.1 }").find("must lie in [0, 1)"), std::string::npos);
+}
+
 // FHI: direction × magnitude table, handed to the engine.
 TEST_F(LuaApi, ForceHistoryAlongADirection) {
   run("m = dda.model{ g1 = 0.01, g2 = 0.5 }\n"
