@@ -306,6 +306,10 @@ int World::solve_step(double dt) {
     m.solution.segment<6>(6 * b) = long_solves ? last_displacement_[b] : Vec6((1 + gg) * dt * velocity_[b] - last_displacement_[b]);
   }, 256);
 
+  // Start the open-close iteration from the states the warm start predicts
+  // (see predict_contact_states).
+  if (controls_.predict_states) predict_contact_states();
+
   // While contact states still change, a solve only has to be good enough to
   // decide them: solve to the looser tolerance, and once the states hold,
   // tighten to cg_tolerance (from where the loose solve got) and check again.
@@ -530,6 +534,65 @@ void World::assemble_contacts(bool all_rows) {
   m.system.assembled();
 }
 
+namespace {
+// A contact's normal gap and shear motion under the displacement d of a solve
+// (or of a warm start).
+struct ContactMotion {
+  double dn;       // gap after the step (penetration positive)
+  double ds_step;  // shear motion in the step
+};
+
+ContactMotion contact_motion(const ContactKinematics& k, const VecX& d, const Contact& c) {
+  const auto dv = d.segment<6>(6 * c.vblock);
+  const auto de = d.segment<6>(6 * c.eblock);
+  return {k.d0 + k.en_v.dot(dv) + k.en_e.dot(de), k.es_v.dot(dv) + k.es_e.dot(de)};
+}
+
+// A contact's springs: g0 (normal) and shear_ratio·g0 (shear), scaled.
+ContactSprings contact_springs(const Contact& c, double g0, double shear_ratio, double tolerance) {
+  return {c.scale * g0, c.scale * shear_ratio * g0, tolerance};
+}
+}  // namespace
+
+// The open-close iteration's first guess: instead of the last step's states,
+// those the warm start (the displacement the last step's motion extrapolates
+// to) implies, so that the first solve is more often the last. Blast(2):
+// 2.84 → 2.04 open-close iterations per step. Only transitions a wrong guess
+// cannot harm are taken, since the solves that follow only undo a wrong
+// guess where the solved displacement contradicts it:
+//   * a contact closes (locked first, as in the iteration); a wrong close
+//     shows up as tension in the solve and opens again;
+//   * a closed contact starts or stops sliding (friction, from the predicted
+//     shear against N·tanφ, or the predicted motion reversing);
+// and not:
+//   * a closed contact opening: on a contact at rest the predicted gap is
+//     round-off around the (small) penetration, and a contact wrongly opened
+//     closes again locked, dropping its sliding history (a block sliding down
+//     an incline would stick a step at a time);
+//   * an intact joint failing: failure is for good, only a solve may cause it;
+// and the friction of sliding contacts in the first solve still uses the
+// normal force of the last accepted solve (Shi's lag), not a predicted one.
+void World::predict_contact_states() {
+  Impl& m = *impl_;
+  const double tolerance = controls_.contact_tolerance * half_height_;
+  parallel_for_each(contacts_.size(), [&](std::size_t i) {
+    Contact& c = contacts_[i];
+    if (c.intact) return;
+    const ContactState state = c.state;
+    const std::int8_t slide_sign = c.slide_sign;
+    const ContactIterate iterate = m.iterate[i];
+    const ContactMotion d = contact_motion(m.kinematics[i], m.solution, c);
+    update_contact_state(c, m.iterate[i], joints_[c.joint], m.tan_friction[c.joint], contact_springs(c, m.g0, controls_.shear_ratio, tolerance), d.dn,
+                         iterate.s0 + d.ds_step, d.ds_step);
+    if (state != ContactState::Open && c.state == ContactState::Open) {
+      c.state = state;
+      c.slide_sign = slide_sign;
+      m.iterate[i] = iterate;
+    }
+    m.iterate[i].normal_force = iterate.normal_force;
+  }, 1024);
+}
+
 bool World::check_contacts() {
   Impl& m = *impl_;
   const std::size_t nc = contacts_.size();
@@ -537,12 +600,8 @@ bool World::check_contacts() {
   m.contact_changed.resize(nc);
   const int any_changed = parallel_max<int>(nc, 0, [&](std::size_t i) {
     Contact& c = contacts_[i];
-    const ContactSprings springs{c.scale * m.g0, c.scale * controls_.shear_ratio * m.g0, tolerance};
-    const ContactKinematics& k = m.kinematics[i];
-    const auto dv = m.solution.segment<6>(6 * c.vblock);
-    const auto de = m.solution.segment<6>(6 * c.eblock);
-    const double dn = k.d0 + k.en_v.dot(dv) + k.en_e.dot(de);
-    const double ds_step = k.es_v.dot(dv) + k.es_e.dot(de);
+    const ContactSprings springs = contact_springs(c, m.g0, controls_.shear_ratio, tolerance);
+    const auto [dn, ds_step] = contact_motion(m.kinematics[i], m.solution, c);
     const double ds = m.iterate[i].s0 + ds_step;
     const bool changed = update_contact_state(c, m.iterate[i], joints_[c.joint], m.tan_friction[c.joint], springs, dn, ds, ds_step);
     m.contact_changed[i] = changed;

@@ -56,6 +56,11 @@ struct Controls {
   // one whose solves took over 30 iterations (the final solve of a step is
   // always tightened to cg_tolerance); = cg_tolerance: off.
   double cg_open_close_tolerance = 1e-4;
+  // Start each step's open-close iteration from the contact states the warm
+  // start predicts (closing and friction transitions only), not from the last
+  // step's: fewer iterations in wave problems (blast(2): 2.84 → 2.04 per
+  // step). The answer is another consistent set of states, not the same bits.
+  bool predict_states = true;
   Preconditioning preconditioner = Preconditioning::Auto;
   // Block-Jacobi keeps a block's inverse while every entry of the diagonal
   // block stays within this fraction (of its largest entry) of the block the
@@ -220,6 +225,7 @@ class World {
   void assemble_block_terms(double dt);  // elastic, inertia, stress, gravity per block
   void assemble_point_terms(double dt);  // loads, fixed points, targets, boundaries at t + Δt
   void assemble_contacts(bool all_rows);  // block terms + contact springs and friction (all rows, or those whose contacts changed)
+  void predict_contact_states();  // the open-close iteration's first guess, from the warm start
   bool check_contacts();          // open-close decision; true when a contact changed
   // The solve's block motions, in one pass over the vertices: the largest
   // vertex displacement, and the first block whose moved outline would have

@@ -3,7 +3,10 @@
 -- Models:  one scene of scenes.lua: --set scene=wall --set n=40 | scene=blast
 --          --set h=2 | scene=bar; --set threads=1|2; --set steps=10 timed steps
 --          after --set warmup=2 untimed ones; --set pre=block_jacobi|multigrid
---          forces a preconditioner (default: the scene's, auto).
+--          forces a preconditioner (default: the scene's, auto); --set
+--          predict=false starts open-close iterations from the last step's
+--          contact states (predict_states = false: the engine before
+--          2026-11-22 23:50).
 -- Run:     build/dda run scripts/bench/bench.lua --set scene=wall --set n=20 --set threads=2 [--set csv=FILE]
 --          (scripts/bench/run.sh runs the whole table, one process per row so
 --          that each row's peak memory is its own).
@@ -22,6 +25,7 @@ local steps = dda.param("steps", 10)
 local warmup = dda.param("warmup", 2)
 local csv = dda.param("csv", "")
 local pre = dda.param("pre", "")  -- preconditioner; "" keeps the scene's (auto)
+local predict = dda.param("predict", true)  -- false: open-close iterations start from the last step's states
 
 local m, name
 if scene == "wall" then
@@ -37,6 +41,7 @@ else
 end
 
 if pre ~= "" then m:controls{ preconditioner = pre } end
+m:controls{ predict_states = predict }
 m:step(warmup)
 local sum = { t_detect = 0, t_assemble = 0, t_solve = 0, t_check = 0, t_update = 0, t_total = 0,
               open_close_iterations = 0, cg_iterations = 0, step_cuts = 0 }

@@ -269,10 +269,19 @@ TEST_F(LuaApi, SolverControlsAreReadableWritableAndChecked) {
       "r0 = m:controls().jacobi_refresh_tolerance\n"
       "m:controls{ jacobi_refresh_tolerance = 0.01, cg_tolerance = 1e-9 }\n"
       "r1 = m:controls().jacobi_refresh_tolerance\n"
-      "t1 = m:controls().cg_tolerance\n");
+      "t1 = m:controls().cg_tolerance\n"
+      "p0 = m:controls().predict_states\n"
+      "m:controls{ predict_states = false }\n"
+      "p1 = m:controls().predict_states\n");
   EXPECT_EQ(number("r0"), 0);
   EXPECT_EQ(number("r1"), 0.01);
   EXPECT_EQ(number("t1"), 1e-9);
+  lua_getglobal(L, "p0");
+  EXPECT_TRUE(lua_isboolean(L, -1) && lua_toboolean(L, -1));
+  lua_getglobal(L, "p1");
+  EXPECT_TRUE(lua_isboolean(L, -1) && !lua_toboolean(L, -1));
+  lua_pop(L, 2);
+  EXPECT_NE(error_of("m:controls{ predict_states = 1 }").find("predict_states"), std::string::npos);
   EXPECT_NE(error_of("m:controls{ jacobi_refresh_tolerance = 1 }").find("'jacobi_refresh_tolerance' must lie in [0, 1), got 1"),
             std::string::npos);
   EXPECT_NE(error_of("m:controls{ jacobi_refresh_tolerance = -0.1 }").find("must lie in [0, 1)"), std::string::npos);
