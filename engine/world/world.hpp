@@ -58,7 +58,7 @@ struct Controls {
   double cg_open_close_tolerance = 1e-4;
   // Start each step's open-close iteration from the contact states the warm
   // start predicts (closing and friction transitions only), not from the last
-  // step's: fewer iterations in wave problems (blast(2): 2.84 → 2.04 per
+  // step's: fewer iterations in wave problems (blast(2): 2.95 → 2.08 per
   // step). The answer is another consistent set of states, not the same bits.
   bool predict_states = true;
   Preconditioning preconditioner = Preconditioning::Auto;
