@@ -37,7 +37,8 @@ class Symmetric6 {
 
   // (this)·x, row by row, the terms of a row in column order from the first
   // product: the same bits as Eigen's Mat6·Vec6 of full() (which sums each row
-  // in column order too; checked in tests/engine/test_symmetric6.cpp).
+  // in column order too; checked bit for bit by the test
+  // Solver.Symmetric6ProductHasTheBitsOfTheFullProduct).
   Vec6 operator*(const Vec6& x) const {
     // Two rows at a time (one SSE2 register), as Eigen does it.
     Vec6 y;
