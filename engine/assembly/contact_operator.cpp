@@ -40,7 +40,7 @@ void ContactOperator::set_contacts(int blocks, std::span<const Contact> contacts
   stored_valid_ = stored_shaped_ = products_shaped_ = false;
 }
 
-void ContactOperator::set_kinematics(std::span<const ContactKinematics> kinematics) {
+void ContactOperator::set_kinematics(std::span<const ContactGradients> kinematics) {
   DDA_ASSERT(kinematics.size() == blocks_.size(), "one linearisation per contact");
   kinematics_ = kinematics;
   stored_valid_ = false;
@@ -72,7 +72,7 @@ void ContactOperator::shape(Matrix& matrix, bool& shaped) const {
 void ContactOperator::add_coupling(Mat6& block, int i, int b) const {
   const Springs& k = springs_[i];
   if (k.kn == 0 && k.ks == 0) return;  // open
-  const ContactKinematics& c = kinematics_[i];
+  const ContactGradients& c = kinematics_[i];
   const bool vertex_side = blocks_[i].first == b;
   const Vec6 &en_self = vertex_side ? c.en_v : c.en_e, &en_other = vertex_side ? c.en_e : c.en_v;
   const Vec6 &es_self = vertex_side ? c.es_v : c.es_e, &es_other = vertex_side ? c.es_e : c.es_v;
@@ -111,7 +111,7 @@ void ContactOperator::multiply_rows(int begin, int end, const VecX& x, VecX& y) 
       const int i = row_contacts_[r];
       const Springs& k = springs_[i];
       if (k.kn == 0 && k.ks == 0) continue;  // open
-      const ContactKinematics& c = kinematics_[i];
+      const ContactGradients& c = kinematics_[i];
       const bool vertex_side = blocks_[i].first == b;
       const auto x_other = x.segment<6>(6 * other_block(i, b));
       // Row b of k·e eᵀ restricted to the other block: k·e_self·(e_other·x_other).

@@ -43,7 +43,7 @@ class ContactOperator final : public LinearOperator {
   void set_contacts(int blocks, std::span<const Contact> contacts);
   // The contacts' linearisation the springs act through; kept by reference
   // until the next call (the caller keeps it alive and unmoved).
-  void set_kinematics(std::span<const ContactKinematics> kinematics);
+  void set_kinematics(std::span<const ContactGradients> kinematics);
 
   // Multiply with a stored matrix (assembled in assembled()) instead of
   // matrix-free.
@@ -82,7 +82,7 @@ class ContactOperator final : public LinearOperator {
   std::vector<std::pair<int, int>> blocks_;  // per contact: (vertex block, edge block)
   std::vector<Springs> springs_;
   std::vector<int> row_start_, row_contacts_;
-  std::span<const ContactKinematics> kinematics_;
+  std::span<const ContactGradients> kinematics_;
   bool store_products_ = false;
 
   template <typename Matrix>

@@ -236,10 +236,13 @@ void World::detect_contacts() {
   const BlockPolygons polys{vertex_start_, vertices_};
   if (!contact_list_is_stale()) {
     // Same contacts: refresh their linearisation from the current geometry.
-    m.kinematics.resize(contacts_.size());
+    m.gradients.resize(contacts_.size());
+    m.offsets.resize(contacts_.size());
     parallel_for_each(contacts_.size(), [&](std::size_t i) {
-      m.kinematics[i] = contact_kinematics(polys, centroid_, contacts_[i]);
-      contacts_[i].penetration = m.kinematics[i].d0;
+      const ContactKinematics k = contact_kinematics(polys, centroid_, contacts_[i]);
+      m.gradients[i] = k;
+      m.offsets[i] = k;
+      contacts_[i].penetration = k.d0;
     }, 256);
     return;
   }
@@ -258,20 +261,23 @@ void World::detect_contacts() {
   std::vector<int> order(contacts_.size());
   for (std::size_t i = 0; i < order.size(); ++i) order[i] = static_cast<int>(i);
   std::sort(order.begin(), order.end(), [&](int x, int y) { return identity_less(contacts_[x], contacts_[y]); });
-  m.kinematics.resize(found.size());
+  m.gradients.resize(found.size());
+  m.offsets.resize(found.size());
   parallel_for_each(found.size(), [&](std::size_t i) {
     Contact& c = found[i];
     const auto it = std::lower_bound(order.begin(), order.end(), c,
                                      [&](int x, const Contact& key) { return identity_less(contacts_[x], key); });
     const bool known = it != order.end() && same_identity(contacts_[*it], c);
     if (known) set_iteration_state(c, iteration_state(contacts_[*it]));  // (penetration: set below)
-    m.kinematics[i] = contact_kinematics(polys, centroid_, c);
+    const ContactKinematics k = contact_kinematics(polys, centroid_, c);
+    m.gradients[i] = k;
+    m.offsets[i] = k;
     if (!known) {
-      const bool touching = m.kinematics[i].d0 >= -1e-9 * m.kinematics[i].edge_length;
+      const bool touching = k.d0 >= -1e-9 * k.edge_length;
       c.state = touching ? ContactState::Locked : ContactState::Open;
       c.intact = touching && m.first_detection;
     }
-    c.penetration = m.kinematics[i].d0;
+    c.penetration = k.d0;
   });
   contacts_ = std::move(found);
   m.first_detection = false;
@@ -289,7 +295,7 @@ int World::solve_step(double dt) {
   m.t_assemble += seconds_since(t0);
 
   m.iterate.resize(contacts_.size());
-  parallel_for_each(contacts_.size(), [&](std::size_t i) { m.iterate[i] = {m.kinematics[i].s0, contacts_[i].normal_force}; }, 1024);
+  parallel_for_each(contacts_.size(), [&](std::size_t i) { m.iterate[i] = {m.offsets[i].s0, contacts_[i].normal_force}; }, 1024);
   const int n = static_cast<int>(block_count());
   m.solution.resize(6 * n);
   constexpr double kLooseAboveIterations = 30;  // CG iterations per solve in the last step
@@ -506,7 +512,7 @@ void World::assemble_contacts(bool all_rows) {
     for (const int i : row) {
       const Contact& c = contacts_[i];
       if (c.state == ContactState::Open) continue;
-      const ContactKinematics& k = m.kinematics[i];
+      const ContactGradients& k = m.gradients[i];
       const ContactOperator::Springs& springs = m.system.springs(i);
       const bool is_vertex_block = c.vblock == b;
       const Vec6& en_self = is_vertex_block ? k.en_v : k.en_e;
@@ -516,7 +522,7 @@ void World::assemble_contacts(bool all_rows) {
       // triangle); the coupling to the other block stays with the operator
       // (assembly/contact_operator.hpp).
       if (matrix_too) diag.add_outer(springs.kn, en_self);
-      f -= springs.kn * k.d0 * en_self;
+      f -= springs.kn * m.offsets[i].d0 * en_self;
       if (c.state == ContactState::Locked) {
         if (matrix_too) diag.add_outer(springs.ks, es_self);
         f -= springs.ks * m.iterate[i].s0 * es_self;
@@ -530,7 +536,7 @@ void World::assemble_contacts(bool all_rows) {
     m.rhs.segment<6>(6 * b) = f;
     if (matrix_too) m.system.rewrite_diagonal(b) = diag;
   }, 16);
-  m.system.set_kinematics(m.kinematics);
+  m.system.set_kinematics(m.gradients);
   m.system.assembled();
 }
 
@@ -542,10 +548,10 @@ struct ContactMotion {
   double ds_step;  // shear motion in the step
 };
 
-ContactMotion contact_motion(const ContactKinematics& k, const VecX& d, const Contact& c) {
+ContactMotion contact_motion(const ContactGradients& k, const ContactOffsets& o, const VecX& d, const Contact& c) {
   const auto dv = d.segment<6>(6 * c.vblock);
   const auto de = d.segment<6>(6 * c.eblock);
-  return {k.d0 + k.en_v.dot(dv) + k.en_e.dot(de), k.es_v.dot(dv) + k.es_e.dot(de)};
+  return {o.d0 + k.en_v.dot(dv) + k.en_e.dot(de), k.es_v.dot(dv) + k.es_e.dot(de)};
 }
 
 // A contact's springs: g0 (normal) and shear_ratio·g0 (shear), scaled.
@@ -586,7 +592,7 @@ void World::predict_contact_states() {
     const ContactState state = c.state;
     const std::int8_t slide_sign = c.slide_sign;
     const ContactIterate iterate = m.iterate[i];
-    const ContactMotion d = contact_motion(m.kinematics[i], m.solution, c);
+    const ContactMotion d = contact_motion(m.gradients[i], m.offsets[i], m.solution, c);
     const ContactSprings springs = contact_springs(c, m.g0, controls_.shear_ratio, tolerance);
     update_contact_state(c, m.iterate[i], joints_[c.joint], m.tan_friction[c.joint], springs, d.dn, iterate.s0 + d.ds_step,
                          d.ds_step);
@@ -607,7 +613,7 @@ bool World::check_contacts() {
   const int any_changed = parallel_max<int>(nc, 0, [&](std::size_t i) {
     Contact& c = contacts_[i];
     const ContactSprings springs = contact_springs(c, m.g0, controls_.shear_ratio, tolerance);
-    const auto [dn, ds_step] = contact_motion(m.kinematics[i], m.solution, c);
+    const auto [dn, ds_step] = contact_motion(m.gradients[i], m.offsets[i], m.solution, c);
     const double ds = m.iterate[i].s0 + ds_step;
     const bool changed = update_contact_state(c, m.iterate[i], joints_[c.joint], m.tan_friction[c.joint], springs, dn, ds, ds_step);
     m.contact_changed[i] = changed;
@@ -706,8 +712,8 @@ void World::update(double dt) {
   parallel_for_each(contacts_.size(), [&](std::size_t i) {
     Contact& c = contacts_[i];
     if (c.state == ContactState::Locked) {
-      if (!c.ref_valid || m.iterate[i].s0 != m.kinematics[i].s0) {
-        c.ref_param = m.kinematics[i].param;
+      if (!c.ref_valid || m.iterate[i].s0 != m.offsets[i].s0) {
+        c.ref_param = m.offsets[i].param;
         c.ref_valid = true;
       }
     } else {

@@ -52,7 +52,8 @@ struct World::Impl {
   std::vector<double> tan_friction;  // tan φ per joint material (the contact law needs it per contact)
 
   // Per contact, parallel to World::contacts_.
-  std::vector<ContactKinematics> kinematics;
+  std::vector<ContactGradients> gradients;  // the contacts' linearisation (contact_law.hpp), in two parts
+  std::vector<ContactOffsets> offsets;
   std::vector<ContactIterate> iterate;
   std::vector<char> contact_changed;  // by the last open-close check (its rows are reassembled)
   std::vector<char> row_reassembled;  // per block row: rewritten by the last assembly (matrix or right-hand side)

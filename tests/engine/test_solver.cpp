@@ -137,7 +137,7 @@ TEST(Solver, MatrixFreeProductEqualsTheStoredMatrix) {
   const std::vector<Link> links = {{0, 1, ContactState::Locked}, {1, 0, ContactState::Locked}, {1, 2, ContactState::Sliding},
                                    {2, 0, ContactState::Open},   {3, 1, ContactState::Locked}, {2, 3, ContactState::Sliding}};
   std::vector<Contact> contacts;
-  std::vector<ContactKinematics> kinematics;
+  std::vector<ContactGradients> kinematics;
   std::uint64_t seed = 12345;
   auto next = [&] {  // deterministic numbers in [-1, 1)
     seed = seed * 6364136223846793005ull + 1442695040888963407ull;
@@ -154,7 +154,7 @@ TEST(Solver, MatrixFreeProductEqualsTheStoredMatrix) {
     c.eblock = l.e;
     c.state = l.state;
     contacts.push_back(c);
-    ContactKinematics k;
+    ContactGradients k;
     k.en_v = random6();
     k.en_e = random6();
     k.es_v = random6();
@@ -254,7 +254,7 @@ TEST(Solver, BlockJacobiFollowsRewrittenDiagonalBlocks) {
   ContactOperator op;
   op.set_contacts(3, contacts);
   for (int b = 0; b < 3; ++b) op.rewrite_diagonal(b) = Symmetric6(Mat6(Mat6::Identity() * (b + 1)));
-  std::vector<ContactKinematics> kinematics(1);
+  std::vector<ContactGradients> kinematics(1);
   op.set_kinematics(kinematics);
   op.assembled();
   BlockJacobi jacobi;
