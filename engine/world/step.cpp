@@ -589,16 +589,14 @@ void World::predict_contact_states() {
   parallel_for_each(contacts_.size(), [&](std::size_t i) {
     Contact& c = contacts_[i];
     if (c.intact) return;
-    const ContactState state = c.state;
-    const std::int8_t slide_sign = c.slide_sign;
+    const ContactIterationState before = iteration_state(c);
     const ContactIterate iterate = m.iterate[i];
     const ContactMotion d = contact_motion(m.gradients[i], m.offsets[i], m.solution, c);
     const ContactSprings springs = contact_springs(c, m.g0, controls_.shear_ratio, tolerance);
     update_contact_state(c, m.iterate[i], joints_[c.joint], m.tan_friction[c.joint], springs, d.dn, iterate.s0 + d.ds_step,
                          d.ds_step);
-    if (state != ContactState::Open && c.state == ContactState::Open) {
-      c.state = state;
-      c.slide_sign = slide_sign;
+    if (before.state != ContactState::Open && c.state == ContactState::Open) {
+      set_iteration_state(c, before);
       m.iterate[i] = iterate;
     }
     m.iterate[i].normal_force = iterate.normal_force;
