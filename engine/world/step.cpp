@@ -234,16 +234,17 @@ bool World::contact_list_is_stale() const {
 void World::detect_contacts() {
   Impl& m = *impl_;
   const BlockPolygons polys{vertex_start_, vertices_};
+  // Contact i's linearisation, into its two arrays (sized by the caller).
+  auto linearise = [&](std::size_t i, const Contact& c) -> const ContactOffsets& {
+    const ContactKinematics k = contact_kinematics(polys, centroid_, c);
+    m.gradients[i] = k;
+    return m.offsets[i] = k;
+  };
   if (!contact_list_is_stale()) {
     // Same contacts: refresh their linearisation from the current geometry.
     m.gradients.resize(contacts_.size());
     m.offsets.resize(contacts_.size());
-    parallel_for_each(contacts_.size(), [&](std::size_t i) {
-      const ContactKinematics k = contact_kinematics(polys, centroid_, contacts_[i]);
-      m.gradients[i] = k;
-      m.offsets[i] = k;
-      contacts_[i].penetration = k.d0;
-    }, 256);
+    parallel_for_each(contacts_.size(), [&](std::size_t i) { contacts_[i].penetration = linearise(i, contacts_[i]).d0; }, 256);
     return;
   }
   const double range = contact_range();
@@ -269,9 +270,7 @@ void World::detect_contacts() {
                                      [&](int x, const Contact& key) { return identity_less(contacts_[x], key); });
     const bool known = it != order.end() && same_identity(contacts_[*it], c);
     if (known) set_iteration_state(c, iteration_state(contacts_[*it]));  // (penetration: set below)
-    const ContactKinematics k = contact_kinematics(polys, centroid_, c);
-    m.gradients[i] = k;
-    m.offsets[i] = k;
+    const ContactOffsets& k = linearise(i, c);
     if (!known) {
       const bool touching = k.d0 >= -1e-9 * k.edge_length;
       c.state = touching ? ContactState::Locked : ContactState::Open;
