@@ -58,13 +58,15 @@ struct Controls {
   // Start each step's open-close iteration from the contact states the warm
   // start predicts (closing and friction transitions only), not from the last
   // step's: fewer iterations in wave problems (blast(2): 2.95 → 2.08 per
-  // step). The answer is another consistent set of states, not the same bits.
+  // step; not done after long solves, whose warm start predicts nothing).
+  // The answer is another consistent set of states, not the same bits.
   bool predict_states = true;
   Preconditioning preconditioner = Preconditioning::Auto;
   // Block-Jacobi keeps a block's inverse while every entry of the diagonal
   // block stays within this fraction (of its largest entry) of the block the
-  // inverse was made from. Only how fast the CG converges depends on it,
-  // never to what; 0: invert every rewritten block anew.
+  // inverse was made from. How fast the CG converges depends on it, and
+  // where a loose open-close solve stops (which friction's normal force
+  // sees), not the tolerance reached; 0: invert every rewritten block anew.
   double jacobi_refresh_tolerance = 1e-4;
   int cg_max_iterations = 0;        // 0 → 10 × unknowns + 100
   int threads = 0;                  // 0 → every core
