@@ -52,8 +52,9 @@ struct Controls {
   double cut_factor = 1.0 / 3.0;    // Δt multiplier when a step is redone
   int max_step_cuts = 20;           // cuts in one step before giving up (error)
   double cg_tolerance = 1e-10;      // PCG relative residual of the accepted solution
-  // PCG relative residual while contact states still change (the final solve
-  // of a step is always tightened to cg_tolerance); = cg_tolerance: off.
+  // PCG relative residual while contact states still change, in steps after
+  // one whose solves took over 30 iterations (the final solve of a step is
+  // always tightened to cg_tolerance); = cg_tolerance: off.
   double cg_open_close_tolerance = 1e-4;
   // Start each step's open-close iteration from the contact states the warm
   // start predicts (closing and friction transitions only), not from the last
