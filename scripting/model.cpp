@@ -382,6 +382,7 @@ StepStats ScriptModel::step(lua_State* L) {
   totals_.step_cuts += st.step_cuts;
   totals_.open_close_iterations += st.open_close_iterations;
   totals_.cg_iterations += st.cg_iterations;
+  totals_.patch_iterations += st.patch_iterations;
   const long n = world_->step_count();
   for (auto& m : monitors_)
     if (n % m->every == 0) record(*m);

@@ -123,6 +123,7 @@ struct Totals {
   long step_cuts = 0;
   long open_close_iterations = 0;
   long cg_iterations = 0;
+  long patch_iterations = 0;
   double wall_seconds = 0;
 };
 

@@ -289,6 +289,7 @@ void push_stats(lua_State* L, const StepStats& s) {
   num("dt", s.dt);
   integer("open_close_iterations", s.open_close_iterations);
   integer("cg_iterations", s.cg_iterations);
+  integer("patch_iterations", s.patch_iterations);
   integer("step_cuts", s.step_cuts);
   lua_pushstring(L, s.cut_reason.c_str());
   lua_setfield(L, -2, "cut_reason");

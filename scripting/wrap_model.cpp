@@ -15,7 +15,7 @@ namespace dda::script {
 
 #define DDA_CONTROL_KEYS                                                                                 \
   "plane", "g0", "g1", "g2", "gg", "shear_ratio", "open_close_limit", "contact_tolerance", "contact_range",             \
-      "fixed_point_factor", "gravity", "cut_factor", "max_step_cuts", "cg_tolerance", "cg_open_close_tolerance", "predict_states", "jacobi_refresh_tolerance", "preconditioner",   \
+      "fixed_point_factor", "gravity", "cut_factor", "max_step_cuts", "cg_tolerance", "cg_open_close_tolerance", "predict_states", "patch_hops", "jacobi_refresh_tolerance", "preconditioner",   \
       "cg_max_iterations", "threads"
 
 void parse_controls(const Options& o, Controls& c) {
@@ -74,6 +74,11 @@ void parse_controls(const Options& o, Controls& c) {
     else
       fail(call, ": option 'preconditioner' must be \"auto\", \"block_jacobi\" or \"multigrid\", got \"", p, "\"");
   }
+  if (o.has("patch_hops")) {
+    const long n = o.integer("patch_hops", 0);
+    if (n < 0) fail(call, ": option 'patch_hops' must be zero (off) or positive, got ", n);
+    c.patch_hops = static_cast<int>(n);
+  }
   if (o.has("cg_max_iterations")) {
     const long n = o.integer("cg_max_iterations", 0);
     if (n < 0) fail(call, ": option 'cg_max_iterations' must be zero (automatic) or positive, got ", n);
@@ -121,6 +126,7 @@ void push_controls(lua_State* L, const Controls& c) {
                                                                        : "multigrid");
   lua_setfield(L, -2, "preconditioner");
   integer("cg_max_iterations", c.cg_max_iterations);
+  integer("patch_hops", c.patch_hops);
   integer("threads", c.threads);
 }
 
@@ -275,6 +281,7 @@ int m_totals(lua_State* L) {
   set_integer_field(L, "step_cuts", t.step_cuts);
   set_integer_field(L, "open_close_iterations", t.open_close_iterations);
   set_integer_field(L, "cg_iterations", t.cg_iterations);
+  set_integer_field(L, "patch_iterations", t.patch_iterations);
   set_number_field(L, "wall_seconds", t.wall_seconds);
   set_number_field(L, "steps_per_second", t.wall_seconds > 0 ? t.steps / t.wall_seconds : 0);
   return 1;

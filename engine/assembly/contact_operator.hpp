@@ -68,6 +68,11 @@ class ContactOperator final : public LinearOperator {
   Mat6 diagonal_block(int i) const override { return diagonal_[i].full(); }
   std::uint64_t diagonal_revision(int i) const override { return diagonal_revision_[i]; }
   void multiply_rows(int begin, int end, const VecX& x, VecX& y) const override;
+  // Every contact's other block (open contacts included), in contact order.
+  bool append_neighbours(int i, std::vector<int>& out) const override {
+    for (const int c : row_contacts(i)) out.push_back(other_block(c, i));
+    return true;
+  }
   // Assembled on the first call after assembled(): one block per pair of
   // blocks in the contact list (open contacts included, so that the pattern
   // holds for all the open-close iterations of a step).

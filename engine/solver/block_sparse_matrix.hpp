@@ -40,6 +40,11 @@ class BlockSparseMatrix final : public LinearOperator {
   // LinearOperator
   Mat6 diagonal_block(int i) const override { return values_[diag_[i]]; }
   void multiply_rows(int begin, int end, const VecX& x, VecX& y) const override;
+  bool append_neighbours(int i, std::vector<int>& out) const override {
+    for (int k = row_start_[i]; k < row_start_[i + 1]; ++k)
+      if (cols_[k] != i) out.push_back(cols_[k]);
+    return true;
+  }
   const BlockSparseMatrix& stored() const override { return *this; }
 
   // Scalar sparse copy (test oracle and debugging only; not used in the step).

@@ -4,6 +4,7 @@
 // ranges of block rows. Either stored (BlockSparseMatrix) or matrix-free
 // (the contact springs, assembly/contact_operator.hpp).
 #include <cstdint>
+#include <vector>
 
 #include "core/types.hpp"
 
@@ -25,6 +26,9 @@ class LinearOperator {
   // ranges may run in parallel, and a row's result never depends on how the
   // rows were split.
   virtual void multiply_rows(int begin, int end, const VecX& x, VecX& y) const = 0;
+  // Appends the block rows that row i couples to (its off-diagonal blocks)
+  // to `out` and returns true; an operator that cannot say returns false.
+  virtual bool append_neighbours(int /*i*/, std::vector<int>& /*out*/) const { return false; }
   // The operator as a stored matrix, for what needs its entries (multigrid's
   // Galerkin products, the direct test solver). May assemble it on the call.
   virtual const BlockSparseMatrix& stored() const = 0;

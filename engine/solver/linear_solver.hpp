@@ -20,6 +20,10 @@ struct SolveReport {
   bool finite = true;  // false when a NaN/Inf appeared
   int iterations = 0;
   double relative_residual = 0;
+  // Iterations of a re-solve confined to the rows near the changed ones
+  // (PcgSolver::patch_hops), and how many rows that patch had.
+  int patch_iterations = 0;
+  int patch_rows = 0;
 };
 
 class LinearSolver {
@@ -93,9 +97,21 @@ class PcgSolver final : public LinearSolver {
   SolveReport resolve(const VecX& b, VecX& x, std::span<const char> changed_rows) override {
     return solve_from(b, x, changed_rows);
   }
+  // A re-solve first solves on a patch: the changed rows and the rows within
+  // patch_hops couplings of them, the rest of x held (0: off). Where the
+  // system is diagonally dominant (wave problems: a block's inertia against
+  // its springs), the correction a local change asks for dies out within a
+  // few blocks, and a patch iteration costs its rows, not the whole system.
+  // The global PCG then takes over from the patch's answer (often with
+  // nothing left to do). Used only when the patch is under
+  // patch_max_share of the rows and the preconditioner applies by rows.
+  int patch_hops = 0;
+  double patch_max_share = 0.25;
 
  private:
   SolveReport solve_from(const VecX& b, VecX& x, std::span<const char> changed_rows);
+  bool build_patch(std::span<const char> changed_rows);
+  double solve_on_patch(VecX& x, double bnorm, SolveReport& report);
   template <typename F>
   double chunked_sum(std::size_t blocks, F&& f);
   // Two sums at once: f(begin, end, first, second) adds the chunk's shares.
@@ -107,6 +123,13 @@ class PcgSolver final : public LinearSolver {
   VecX r_, z_, p_, ap_;          // reused between solves: no allocation in the step loop
   bool residual_valid_ = false;  // r_ = b − A·x for the x the last solve returned (converged)
   std::vector<double> partial_, partial2_;  // per-chunk partial sums of the fused kernels
+  // The patch of a re-solve: its rows (ascending), the rows just outside it
+  // whose residual its correction changes, a mark per row (1 patch,
+  // 2 boundary), and its search direction and total correction (full
+  // length, zero outside the patch between solves).
+  std::vector<int> patch_, patch_boundary_, neighbours_;
+  std::vector<char> patch_mark_;
+  VecX patch_p_, patch_d_;
 };
 
 // Sparse direct LDLᵀ (Eigen). A test oracle, not used by the engine's step.

@@ -200,6 +200,18 @@ SolveReport PcgSolver::solve_from(const VecX& b, VecX& x, std::span<const char> 
     return report;
   }
   const bool by_rows = pre_->applies_by_rows();
+  if (reuse && patch_hops > 0 && by_rows && build_patch(changed_rows)) {
+    rr = solve_on_patch(x, bnorm, report);
+    report.relative_residual = std::sqrt(rr) / bnorm;
+    if (!std::isfinite(rr)) {
+      report.finite = false;
+      return report;
+    }
+    if (report.relative_residual <= tolerance) {
+      report.converged = residual_valid_ = true;
+      return report;
+    }
+  }
   pre_->apply(r_, z_);
   double rz = chunked_sum(blocks, [&](std::size_t begin, std::size_t end) {
     const std::size_t o = 6 * begin, len = 6 * (end - begin);
@@ -262,6 +274,127 @@ SolveReport PcgSolver::solve_from(const VecX& b, VecX& x, std::span<const char> 
     parallel_for_each(blocks, [&](std::size_t i) { p_.segment<6>(6 * i) = z_.segment<6>(6 * i) + beta * p_.segment<6>(6 * i); }, kPcgChunk);
   }
   return report;
+}
+
+// The changed rows and every row within patch_hops couplings of them
+// (breadth first, then sorted), and the rows one coupling further out. False,
+// with nothing marked, when the operator cannot name its couplings or the
+// patch would exceed patch_max_share of the rows.
+bool PcgSolver::build_patch(std::span<const char> changed_rows) {
+  const LinearOperator& a = *a_;
+  const std::size_t blocks = changed_rows.size();
+  const std::size_t limit = static_cast<std::size_t>(patch_max_share * static_cast<double>(blocks));
+  patch_mark_.resize(blocks, 0);  // all zero between calls
+  patch_.clear();
+  patch_boundary_.clear();
+  for (std::size_t i = 0; i < blocks; ++i)
+    if (changed_rows[i]) {
+      patch_mark_[i] = 1;
+      patch_.push_back(static_cast<int>(i));
+    }
+  bool ok = !patch_.empty() && patch_.size() <= limit;
+  std::size_t layer_begin = 0;
+  for (int hop = 1; ok && hop <= patch_hops + 1; ++hop) {
+    // Rows one coupling beyond the last layer: the next layer, or, after
+    // the last hop, the boundary.
+    const bool boundary = hop > patch_hops;
+    std::vector<int>& into = boundary ? patch_boundary_ : patch_;
+    const std::size_t layer_end = patch_.size();
+    for (std::size_t k = layer_begin; k < layer_end && ok; ++k) {
+      neighbours_.clear();
+      ok = a.append_neighbours(patch_[k], neighbours_);
+      for (const int j : neighbours_)
+        if (!patch_mark_[j]) {
+          patch_mark_[j] = boundary ? 2 : 1;
+          into.push_back(j);
+        }
+    }
+    layer_begin = layer_end;
+    ok = ok && patch_.size() <= limit;
+  }
+  if (!ok) {
+    for (const int i : patch_) patch_mark_[i] = 0;
+    for (const int i : patch_boundary_) patch_mark_[i] = 0;
+    return false;
+  }
+  std::sort(patch_.begin(), patch_.end());
+  std::sort(patch_boundary_.begin(), patch_boundary_.end());
+  return true;
+}
+
+// PCG on the patch rows with x held elsewhere (the patch's principal
+// submatrix: SPD as A is), then the residual of the rows just outside
+// corrected for the patch's change. Sums run over fixed chunks of the sorted
+// patch: the same bits for any thread count. Returns ‖b − A·x‖² over all rows.
+double PcgSolver::solve_on_patch(VecX& x, double bnorm, SolveReport& report) {
+  const LinearOperator& a = *a_;
+  const std::size_t n = static_cast<std::size_t>(x.size()), rows = patch_.size();
+  if (static_cast<std::size_t>(patch_p_.size()) != n) {
+    patch_p_ = VecX::Zero(n);
+    patch_d_ = VecX::Zero(n);
+  }
+  z_.resize(n);
+  report.patch_rows = static_cast<int>(rows);
+  auto row = [&](std::size_t k) { return static_cast<std::size_t>(patch_[k]); };
+  double rz = chunked_sum(rows, [&](std::size_t begin, std::size_t end) {
+    double share = 0;
+    for (std::size_t k = begin; k < end; ++k) {
+      const std::size_t i = row(k);
+      pre_->apply_rows(i, i + 1, r_, z_);
+      patch_p_.segment<6>(6 * i) = z_.segment<6>(6 * i);
+      share += r_.segment<6>(6 * i).dot(z_.segment<6>(6 * i));
+    }
+    return share;
+  });
+  // Half the global target: the rows outside keep the last solve's residual.
+  const double target = 0.5 * tolerance * bnorm;
+  for (int it = 1; it <= 4 * patch_hops; ++it) {
+    const double pap = chunked_sum(rows, [&](std::size_t begin, std::size_t end) {
+      double share = 0;
+      for (std::size_t k = begin; k < end; ++k) {
+        const int i = patch_[k];
+        a.multiply_rows(i, i + 1, patch_p_, ap_);
+        share += patch_p_.segment<6>(6 * i).dot(ap_.segment<6>(6 * i));
+      }
+      return share;
+    });
+    report.patch_iterations = it;
+    if (!std::isfinite(pap) || !(pap > 0) || !(rz > 0)) break;  // the global PCG reports the breakdown
+    const double alpha = rz / pap;
+    const auto [rr_patch, rz_next] = chunked_sums(rows, [&](std::size_t begin, std::size_t end, double& r2, double& r_z) {
+      for (std::size_t k = begin; k < end; ++k) {
+        const std::size_t i = row(k);
+        const Vec6 step = alpha * patch_p_.segment<6>(6 * i);
+        x.segment<6>(6 * i) += step;
+        patch_d_.segment<6>(6 * i) += step;
+        r_.segment<6>(6 * i) -= alpha * ap_.segment<6>(6 * i);
+        r2 += r_.segment<6>(6 * i).squaredNorm();
+        pre_->apply_rows(i, i + 1, r_, z_);
+        r_z += r_.segment<6>(6 * i).dot(z_.segment<6>(6 * i));
+      }
+    });
+    if (!std::isfinite(rr_patch) || rr_patch <= target * target) break;
+    const double beta = rz_next / rz;
+    rz = rz_next;
+    parallel_for_each(rows, [&](std::size_t k) {
+      const std::size_t i = row(k);
+      patch_p_.segment<6>(6 * i) = z_.segment<6>(6 * i) + beta * patch_p_.segment<6>(6 * i);
+    }, kPcgChunk);
+  }
+  // The rows just outside: r −= A·d there (d is zero off the patch).
+  parallel_for_each(patch_boundary_.size(), [&](std::size_t k) {
+    const int i = patch_boundary_[k];
+    a.multiply_rows(i, i + 1, patch_d_, ap_);
+    r_.segment<6>(6 * i) -= ap_.segment<6>(6 * i);
+    patch_mark_[i] = 0;
+  }, kPcgChunk);
+  parallel_for_each(rows, [&](std::size_t k) {
+    const std::size_t i = row(k);
+    patch_p_.segment<6>(6 * i).setZero();
+    patch_d_.segment<6>(6 * i).setZero();
+    patch_mark_[i] = 0;
+  }, kPcgChunk);
+  return chunked_sum(n / 6, [&](std::size_t begin, std::size_t end) { return r_.segment(6 * begin, 6 * (end - begin)).squaredNorm(); });
 }
 
 SolveReport DirectSolver::solve(const VecX& b, VecX& x) {

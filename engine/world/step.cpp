@@ -29,7 +29,7 @@ StepStats World::step() {
     // Solve; when the step is rejected, restore the contact states, cut Δt
     // and redo it (ControlStep).
     save_contact_states();
-    m.open_close_iterations = m.cg_iterations = 0;
+    m.open_close_iterations = m.cg_iterations = m.patch_iterations = 0;
     m.t_assemble = m.t_solve = m.t_check = 0;
     for (;;) {
       const Rejection r = static_cast<Rejection>(solve_step(dt_));
@@ -57,6 +57,7 @@ StepStats World::step() {
     }
     stats.open_close_iterations = m.open_close_iterations;
     stats.cg_iterations = m.cg_iterations;
+    stats.patch_iterations = m.patch_iterations;
     stats.t_assemble = m.t_assemble;
     stats.t_solve = m.t_solve;
     stats.t_check = m.t_check;
@@ -161,6 +162,7 @@ void World::resolve_controls() {
   require(c.cut_factor > 0 && c.cut_factor < 1, msg("cut factor must lie in (0, 1), got ", c.cut_factor));
   require(c.max_step_cuts >= 0, "max step cuts must be zero or positive");
   require(std::isfinite(c.cg_tolerance) && c.cg_tolerance > 0, msg("CG tolerance must be positive, got ", c.cg_tolerance));
+  require(c.patch_hops >= 0, msg("patch hops must be zero (off) or positive, got ", c.patch_hops));
   require(std::isfinite(c.cg_open_close_tolerance) && c.cg_open_close_tolerance > 0,
           msg("open-close CG tolerance must be positive, got ", c.cg_open_close_tolerance));
   require(c.threads >= 0, msg("threads must be zero (all cores) or positive, got ", c.threads));
@@ -333,6 +335,10 @@ int World::solve_step(double dt) {
   const double loose = long_solves ? std::max(tight, controls_.cg_open_close_tolerance) : tight;
   // Long solves are dominated by the mat-vec: multiply with stored blocks.
   m.system.store_products(long_solves);
+  // Wave problems: a re-solve after a few contacts changed starts on their
+  // patch (see PcgSolver::patch_hops). Not for long solves: there a local
+  // change reaches far (the correction does not die out within a patch).
+  m.solver.patch_hops = long_solves ? 0 : controls_.patch_hops;
   bool settled = false;
   bool tightening = false;
   bool first_solve = true;
@@ -352,6 +358,7 @@ int World::solve_step(double dt) {
                                            : m.solver.resolve(m.rhs, m.solution, m.row_reassembled);
     first_solve = false;
     m.cg_iterations += report.iterations;
+    m.patch_iterations += report.patch_iterations;
     m.t_solve += seconds_since(t0);
     if (!report.finite || !m.solution.allFinite()) {
       // Name the first block whose load or displacement is not finite.

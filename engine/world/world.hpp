@@ -62,6 +62,12 @@ struct Controls {
   // step; not done after long solves, whose warm start predicts nothing).
   // The answer is another consistent set of states, not the same bits.
   bool predict_states = true;
+  // In wave problems (short solves), an open-close iteration's re-solve first
+  // solves on the rows whose contacts changed and those within this many
+  // couplings of them, the rest held (PcgSolver::patch_hops); 0: off. The
+  // global PCG then checks the whole residual and finishes if need be, so
+  // the solve meets cg_tolerance either way.
+  int patch_hops = 8;
   Preconditioning preconditioner = Preconditioning::Auto;
   // Block-Jacobi keeps a block's inverse while every entry of the diagonal
   // block stays within this fraction (of its largest entry) of the block the
@@ -85,7 +91,8 @@ enum class BoundaryKind { Viscous, Spring };
 struct StepStats {
   double dt = 0;
   int open_close_iterations = 0;
-  int cg_iterations = 0;
+  int cg_iterations = 0;      // over all rows
+  int patch_iterations = 0;   // confined to the patch of a re-solve (Controls::patch_hops)
   int step_cuts = 0;
   std::string cut_reason;  // why the last cut was made ("" when none), with the block when one is to blame
   int contacts = 0;

@@ -74,7 +74,7 @@ struct World::Impl {
   std::vector<char> block_inverted;
   std::vector<Vec2> vertex_motion;
 
-  int open_close_iterations = 0, cg_iterations = 0;
+  int open_close_iterations = 0, cg_iterations = 0, patch_iterations = 0;
   double t_assemble = 0, t_solve = 0, t_check = 0;
 };
 

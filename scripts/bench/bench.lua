@@ -13,7 +13,9 @@
 -- Writes:  prints one table row; with --set csv=FILE appends it to FILE with the
 --          columns scene,threads,blocks,contacts,steps,ms_per_step,block_steps_per_s,
 --          oc_per_step,cg_per_step,cuts,detect_share,assemble_share,solve_share,
---          update_share,other_share,peak_rss_mb.
+--          update_share,other_share,peak_rss_mb,patch_per_step (CG iterations
+--          confined to a re-solve's patch, Controls::patch_hops; cg_per_step
+--          counts those over all rows).
 
 local dda = require "dda"
 package.path = package.path .. ";" .. (debug.getinfo(1, "S").source:match("@?(.*/)") or "./") .. "?.lua"
@@ -44,7 +46,7 @@ if pre ~= "" then m:controls{ preconditioner = pre } end
 m:controls{ predict_states = predict }
 m:step(warmup)
 local sum = { t_detect = 0, t_assemble = 0, t_solve = 0, t_check = 0, t_update = 0, t_total = 0,
-              open_close_iterations = 0, cg_iterations = 0, step_cuts = 0 }
+              open_close_iterations = 0, cg_iterations = 0, patch_iterations = 0, step_cuts = 0 }
 for _ = 1, steps do
   m:step(1)
   local s = m:stats()
@@ -68,13 +70,13 @@ local total = sum.t_total
 local ms = 1e3 * total / steps
 local function share(x) return total > 0 and x / total or 0 end
 local other = total - sum.t_detect - sum.t_assemble - sum.t_solve - sum.t_check - sum.t_update
-local row = string.format("%s,%d,%d,%d,%d,%.3f,%.0f,%.2f,%.1f,%d,%.3f,%.3f,%.3f,%.3f,%.3f,%.1f",
+local row = string.format("%s,%d,%d,%d,%d,%.3f,%.0f,%.2f,%.1f,%d,%.3f,%.3f,%.3f,%.3f,%.3f,%.1f,%.1f",
   name, threads, blocks, contacts, steps, ms, blocks * steps / total, sum.open_close_iterations / steps,
   sum.cg_iterations / steps, sum.step_cuts, share(sum.t_detect), share(sum.t_assemble),
-  share(sum.t_solve + sum.t_check), share(sum.t_update), share(other), peak_rss_mb())
-print(string.format("%-10s threads %d  blocks %6d  contacts %7d  %9.2f ms/step  %9.0f block-steps/s  oc %.2f  cg %.1f  cuts %d",
+  share(sum.t_solve + sum.t_check), share(sum.t_update), share(other), peak_rss_mb(), sum.patch_iterations / steps)
+print(string.format("%-10s threads %d  blocks %6d  contacts %7d  %9.2f ms/step  %9.0f block-steps/s  oc %.2f  cg %.1f (+%.1f on patches)  cuts %d",
   name, threads, blocks, contacts, ms, blocks * steps / total, sum.open_close_iterations / steps,
-  sum.cg_iterations / steps, sum.step_cuts))
+  sum.cg_iterations / steps, sum.patch_iterations / steps, sum.step_cuts))
 if csv ~= "" then
   local f = assert(io.open(csv, "a"))
   f:write(row, "\n")

@@ -26,7 +26,7 @@ mkdir -p "$out_dir"
 out="$out_dir/$(date -u +%Y%m%d-%H%M%S)-$(hostname -s).csv"
 {
   echo "# machine: $(nproc) cores, $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ *//'), $(free -g | awk '/Mem:/{print $2}') GiB; commit $(git rev-parse --short HEAD 2>/dev/null || echo '?'); runs per row $repeat (median kept)"
-  echo "scene,threads,blocks,contacts,steps,ms_per_step,block_steps_per_s,oc_per_step,cg_per_step,cuts,detect_share,assemble_share,solve_share,update_share,other_share,peak_rss_mb,runs,ms_min,ms_max"
+  echo "scene,threads,blocks,contacts,steps,ms_per_step,block_steps_per_s,oc_per_step,cg_per_step,cuts,detect_share,assemble_share,solve_share,update_share,other_share,peak_rss_mb,patch_per_step,runs,ms_min,ms_max"
 } > "$out"
 runs=$(mktemp -d)
 trap 'rm -rf "$runs"' EXIT
