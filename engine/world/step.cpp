@@ -327,10 +327,12 @@ int World::solve_step(double dt) {
   // error in the contact forces that decide states and friction. Measured
   // (2026-11-23): loose solves at 1e-4 cut blast(0.25)'s CG iterations from
   // 19.0 to 11.4 per step, but moved the Fig. 11 reflected amplitudes
-  // (Models 5, 6) by 8 and 13 % from solving exactly (1e-13), where solving
-  // tightly is 3.5 and 0.4 % off; at 1e-6 they agree with the exact scheme to
-  // 0.05 %, but blast(2) and the rock bar then run 5–11 % slower (an extra
-  // pass per step) and blast(0.25) only 5 % faster.
+  // (Models 5, 6) by 8 and 13 % from where the same scheme converges (loose
+  // solves at 1e-13); solving tightly is within 0.02 % of its own limit (all
+  // solves at 1e-14). At 1e-6 the loose scheme is within 0.05 % of its limit,
+  // but blast(2) and the rock bar then run 5–11 % slower (an extra pass per
+  // step) and blast(0.25) only 5 % faster. (The two schemes' limits differ,
+  // by 3.5 and 0.4 %: friction lags the normal force of different solves.)
   const double tight = controls_.cg_tolerance;
   const double loose = long_solves ? std::max(tight, controls_.cg_open_close_tolerance) : tight;
   // Long solves are dominated by the mat-vec: multiply with stored blocks.

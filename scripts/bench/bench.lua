@@ -6,7 +6,9 @@
 --          forces a preconditioner (default: the scene's, auto); --set
 --          predict=false starts open-close iterations from the last step's
 --          contact states (predict_states = false: the engine before
---          2026-11-22 23:50).
+--          2026-11-22 23:50); --set patch=0 re-solves over all rows only
+--          (patch_hops = 0: the engine before 2026-11-23 01:40), --set patch=N
+--          patches of N couplings.
 -- Run:     build/dda run scripts/bench/bench.lua --set scene=wall --set n=20 --set threads=2 [--set csv=FILE]
 --          (scripts/bench/run.sh runs the whole table, one process per row so
 --          that each row's peak memory is its own).
@@ -28,6 +30,7 @@ local warmup = dda.param("warmup", 2)
 local csv = dda.param("csv", "")
 local pre = dda.param("pre", "")  -- preconditioner; "" keeps the scene's (auto)
 local predict = dda.param("predict", true)  -- false: open-close iterations start from the last step's states
+local patch = dda.param("patch", -1)  -- re-solve patch hops; -1 keeps the engine's default
 
 local m, name
 if scene == "wall" then
@@ -44,6 +47,7 @@ end
 
 if pre ~= "" then m:controls{ preconditioner = pre } end
 m:controls{ predict_states = predict }
+if patch >= 0 then m:controls{ patch_hops = patch } end
 m:step(warmup)
 local sum = { t_detect = 0, t_assemble = 0, t_solve = 0, t_check = 0, t_update = 0, t_total = 0,
               open_close_iterations = 0, cg_iterations = 0, patch_iterations = 0, step_cuts = 0 }

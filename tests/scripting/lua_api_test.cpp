@@ -272,10 +272,17 @@ TEST_F(LuaApi, SolverControlsAreReadableWritableAndChecked) {
       "t1 = m:controls().cg_tolerance\n"
       "p0 = m:controls().predict_states\n"
       "m:controls{ predict_states = false }\n"
-      "p1 = m:controls().predict_states\n");
+      "p1 = m:controls().predict_states\n"
+      "h0 = m:controls().patch_hops\n"
+      "m:controls{ patch_hops = 0 }\n"
+      "h1 = m:controls().patch_hops\n"
+      "s = m:totals().patch_iterations\n");
   EXPECT_EQ(number("r0"), 0);
   EXPECT_EQ(number("r1"), 0.01);
   EXPECT_EQ(number("t1"), 1e-9);
+  EXPECT_EQ(number("h0"), 8);
+  EXPECT_EQ(number("h1"), 0);
+  EXPECT_EQ(number("s"), 0);
   lua_getglobal(L, "p0");
   EXPECT_TRUE(lua_isboolean(L, -1) && lua_toboolean(L, -1));
   lua_getglobal(L, "p1");
@@ -285,6 +292,9 @@ TEST_F(LuaApi, SolverControlsAreReadableWritableAndChecked) {
   EXPECT_NE(error_of("m:controls{ jacobi_refresh_tolerance = 1 }").find("'jacobi_refresh_tolerance' must lie in [0, 1), got 1"),
             std::string::npos);
   EXPECT_NE(error_of("m:controls{ jacobi_refresh_tolerance = -0.1 }").find("must lie in [0, 1)"), std::string::npos);
+  EXPECT_NE(error_of("m:controls{ patch_hops = -1 }").find("'patch_hops' must be zero (off) or positive, got -1"),
+            std::string::npos);
+  EXPECT_NE(error_of("m:controls{ patch_hops = 1.5 }").find("patch_hops"), std::string::npos);
 }
 
 // FHI: direction × magnitude table, handed to the engine.
