@@ -190,28 +190,24 @@ SolveReport PcgSolver::solve_from(const VecX& b, VecX& x, std::span<const char> 
     }
     return r_.segment(6 * begin, 6 * (end - begin)).squaredNorm();
   });
-  report.relative_residual = std::sqrt(rr) / bnorm;
-  if (!std::isfinite(rr)) {
-    report.finite = false;
-    return report;
-  }
-  if (report.relative_residual <= tolerance) {
-    report.converged = residual_valid_ = true;
-    return report;
-  }
-  const bool by_rows = pre_->applies_by_rows();
-  if (reuse && patch_hops > 0 && by_rows && build_patch(changed_rows)) {
-    rr = solve_on_patch(x, bnorm, report);
-    report.relative_residual = std::sqrt(rr) / bnorm;
-    if (!std::isfinite(rr)) {
+  // Records the relative residual of ‖r‖² = r2; true when the solve ends
+  // there (converged, or not finite).
+  auto ends_at = [&](double r2) {
+    report.relative_residual = std::sqrt(r2) / bnorm;
+    if (!std::isfinite(r2)) {
       report.finite = false;
-      return report;
+      return true;
     }
     if (report.relative_residual <= tolerance) {
       report.converged = residual_valid_ = true;
-      return report;
+      return true;
     }
-  }
+    return false;
+  };
+  if (ends_at(rr)) return report;
+  const bool by_rows = pre_->applies_by_rows();
+  if (reuse && patch_hops > 0 && by_rows && build_patch(changed_rows) && ends_at(solve_on_patch(x, bnorm, report)))
+    return report;
   pre_->apply(r_, z_);
   double rz = chunked_sum(blocks, [&](std::size_t begin, std::size_t end) {
     const std::size_t o = 6 * begin, len = 6 * (end - begin);
@@ -252,16 +248,9 @@ SolveReport PcgSolver::solve_from(const VecX& b, VecX& x, std::span<const char> 
         return r_.segment(o, len).squaredNorm();
       });
     }
-    report.relative_residual = std::sqrt(rr) / bnorm;
+    const bool ends = ends_at(rr);
     if (monitor) monitor(it, report.relative_residual);
-    if (!std::isfinite(rr)) {
-      report.finite = false;
-      return report;
-    }
-    if (report.relative_residual <= tolerance) {
-      report.converged = residual_valid_ = true;
-      return report;
-    }
+    if (ends) return report;
     if (!by_rows) {
       pre_->apply(r_, z_);
       rz_next = chunked_sum(blocks, [&](std::size_t begin, std::size_t end) {
