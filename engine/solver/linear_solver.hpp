@@ -124,9 +124,9 @@ class PcgSolver final : public LinearSolver {
   bool residual_valid_ = false;  // r_ = b − A·x for the x the last solve returned (converged)
   std::vector<double> partial_, partial2_;  // per-chunk partial sums of the fused kernels
   // The patch of a re-solve: its rows (ascending), the rows just outside it
-  // whose residual its correction changes, a mark per row (1 patch,
-  // 2 boundary), and its search direction and total correction (full
-  // length, zero outside the patch between solves).
+  // whose residual its correction changes, a mark per row (on either list),
+  // and its search direction and total correction (full length, zero
+  // outside the patch between solves).
   std::vector<int> patch_, patch_boundary_, neighbours_;
   std::vector<char> patch_mark_;
   VecX patch_p_, patch_d_;

@@ -294,7 +294,7 @@ bool PcgSolver::build_patch(std::span<const char> changed_rows) {
       ok = a.append_neighbours(patch_[k], neighbours_);
       for (const int j : neighbours_)
         if (!patch_mark_[j]) {
-          patch_mark_[j] = boundary ? 2 : 1;
+          patch_mark_[j] = 1;
           into.push_back(j);
         }
     }
