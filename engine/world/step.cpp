@@ -583,9 +583,10 @@ ContactSprings contact_springs(const Contact& c, double g0, double shear_ratio, 
 // per step over its 0.05 s). After long solves (quasi-static walls) the warm
 // start is the last step's own displacement, which has little to tell:
 // predicting from it took wall(10) 3.7 % more CG iterations (555 against
-// 536 per step) and wall(20) the same, so it is not done there. Only transitions a wrong guess cannot harm are taken, since the
-// solves that follow undo a wrong guess only where the solved displacement
-// contradicts it:
+// 536 per step) and wall(20) the same, so it is not done there. Only
+// transitions a wrong guess cannot harm are taken, since the solves that
+// follow undo a wrong guess only where the solved displacement contradicts
+// it:
 //   * a contact closes (locked first, as in the iteration); a wrong close
 //     shows up as tension in the solve and opens again;
 //   * a closed contact starts or stops sliding (friction, from the predicted
