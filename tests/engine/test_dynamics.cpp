@@ -254,6 +254,33 @@ TEST(Solver, JacobiRefreshToleranceReachesThePreconditioner) {
   EXPECT_LE(differ, 1e-8 * moved);
 }
 
+namespace {
+
+// Steps w (Δt = g1, no cuts expected) to t_end, adding its open-close, CG
+// and patch iterations to `sum`; returns the block centroids then.
+std::vector<Vec2> centroids_after(World& w, double t_end, StepStats& sum) {
+  const int steps = static_cast<int>(std::lround(t_end / w.controls().g1));
+  for (int i = 0; i < steps; ++i) {
+    const StepStats s = w.step();
+    sum.open_close_iterations += s.open_close_iterations;
+    sum.cg_iterations += s.cg_iterations;
+    sum.patch_iterations += s.patch_iterations;
+  }
+  EXPECT_NEAR(w.time(), t_end, 1e-12);
+  std::vector<Vec2> centroids;
+  for (BlockId b = 0; b < static_cast<BlockId>(w.block_count()); ++b) centroids.push_back(w.block_centroid(b));
+  return centroids;
+}
+
+// The largest distance between the same block in two runs.
+double largest_distance(const std::vector<Vec2>& a, const std::vector<Vec2>& b) {
+  double d = 0;
+  for (std::size_t i = 0; i < a.size(); ++i) d = std::max(d, (a[i] - b[i]).norm());
+  return d;
+}
+
+}  // namespace
+
 // Controls::predict_states: the open-close iteration starts from the states
 // the warm start implies. A stress wave crossing cohesionless joints (they
 // open, close and slide behind it) takes fewer open-close iterations with the
@@ -266,27 +293,17 @@ TEST(Solver, JacobiRefreshToleranceReachesThePreconditioner) {
 // halving Δt by 6.0e-6 m (largest displacement 6.0e-5 m; a CG tolerance of
 // 1e-12 instead of 1e-10 moves them by 7e-8 m).
 TEST(OpenClose, PredictedStatesSaveIterationsWithinTheTimeStepError) {
-  auto run = [](bool predict, double dt, long& oc) {
+  auto run = [](bool predict, double dt, StepStats& sum) {
     World w = test::kicked_bar(40, 3);
     w.joint_material(0) = JointMaterial{30, 0, 0};
     w.controls().predict_states = predict;
     w.controls().g1 = dt;
-    oc = 0;
-    const int steps = static_cast<int>(std::lround(6e-4 / dt));
-    for (int i = 0; i < steps; ++i) oc += w.step().open_close_iterations;
-    EXPECT_NEAR(w.time(), 6e-4, 1e-12);
-    std::vector<Vec2> centroids;
-    for (BlockId b = 0; b < static_cast<BlockId>(w.block_count()); ++b) centroids.push_back(w.block_centroid(b));
-    return centroids;
+    return centroids_after(w, 6e-4, sum);
   };
-  long oc_last = 0, oc_predicted = 0, oc_fine = 0;
-  const auto last = run(false, 2e-6, oc_last), predicted = run(true, 2e-6, oc_predicted), fine = run(false, 1e-6, oc_fine);
-  EXPECT_LT(oc_predicted, oc_last);
-  double by_prediction = 0, by_time_step = 0;
-  for (std::size_t b = 0; b < last.size(); ++b) {
-    by_prediction = std::max(by_prediction, (predicted[b] - last[b]).norm());
-    by_time_step = std::max(by_time_step, (fine[b] - last[b]).norm());
-  }
+  StepStats last_sum, predicted_sum, fine_sum;
+  const auto last = run(false, 2e-6, last_sum), predicted = run(true, 2e-6, predicted_sum), fine = run(false, 1e-6, fine_sum);
+  EXPECT_LT(predicted_sum.open_close_iterations, last_sum.open_close_iterations);
+  const double by_prediction = largest_distance(predicted, last), by_time_step = largest_distance(fine, last);
   ASSERT_GT(by_time_step, 0);
   EXPECT_LE(by_prediction, 0.5 * by_time_step) << by_prediction << " m against " << by_time_step << " m";
 }
@@ -302,34 +319,19 @@ TEST(OpenClose, PredictedStatesSaveIterationsWithinTheTimeStepError) {
 // 2e-6 s: 1170 → 994 CG iterations over all rows (+184 on patches); the
 // blocks move by 3.8e-14 m, halving Δt moves them by 8.1e-6 m.
 TEST(OpenClose, PatchResolvesSaveIterationsWithinTheTimeStepError) {
-  auto run = [](int hops, double dt, long& cg, long& patch) {
+  auto run = [](int hops, double dt, StepStats& sum) {
     World w = test::kicked_bar(60, 3, 1.0);
     w.joint_material(0) = JointMaterial{30, 0, 0};
     w.controls().patch_hops = hops;
     w.controls().g1 = dt;
-    cg = patch = 0;
-    const int steps = static_cast<int>(std::lround(6e-4 / dt));
-    for (int i = 0; i < steps; ++i) {
-      const StepStats s = w.step();
-      cg += s.cg_iterations;
-      patch += s.patch_iterations;
-    }
-    EXPECT_NEAR(w.time(), 6e-4, 1e-12);
-    std::vector<Vec2> centroids;
-    for (BlockId b = 0; b < static_cast<BlockId>(w.block_count()); ++b) centroids.push_back(w.block_centroid(b));
-    return centroids;
+    return centroids_after(w, 6e-4, sum);
   };
-  long cg_whole = 0, cg_patched = 0, cg_fine = 0, patch_none = 0, patch = 0, patch_fine = 0;
-  const auto whole = run(0, 2e-6, cg_whole, patch_none), patched = run(8, 2e-6, cg_patched, patch),
-             fine = run(0, 1e-6, cg_fine, patch_fine);
-  EXPECT_EQ(patch_none, 0);
-  EXPECT_GT(patch, 0);
-  EXPECT_LT(cg_patched, cg_whole);
-  double by_patches = 0, by_time_step = 0;
-  for (std::size_t b = 0; b < whole.size(); ++b) {
-    by_patches = std::max(by_patches, (patched[b] - whole[b]).norm());
-    by_time_step = std::max(by_time_step, (fine[b] - whole[b]).norm());
-  }
+  StepStats whole_sum, patched_sum, fine_sum;
+  const auto whole = run(0, 2e-6, whole_sum), patched = run(8, 2e-6, patched_sum), fine = run(0, 1e-6, fine_sum);
+  EXPECT_EQ(whole_sum.patch_iterations, 0);
+  EXPECT_GT(patched_sum.patch_iterations, 0);
+  EXPECT_LT(patched_sum.cg_iterations, whole_sum.cg_iterations);
+  const double by_patches = largest_distance(patched, whole), by_time_step = largest_distance(fine, whole);
   ASSERT_GT(by_time_step, 0);
   EXPECT_LE(by_patches, 0.1 * by_time_step) << by_patches << " m against " << by_time_step << " m";
 }
