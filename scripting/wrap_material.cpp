@@ -85,7 +85,7 @@ int rock_newindex(lua_State* L) {
   } else {
     fail("rock: unknown field '", k, "' (fields: density, E, nu)");
   }
-  validate(r, msg("rock material ", id));
+  validate(r, id);
   h->model->world().rock_material(id) = r;
   return 0;
 }
@@ -115,7 +115,7 @@ int joint_newindex(lua_State* L) {
   else if (k == "cohesion") j.cohesion = check_number(L, 3, call, "the value");
   else if (k == "tension") j.tensile_strength = check_number(L, 3, call, "the value");
   else fail("joint: unknown field '", k, "' (fields: friction, cohesion, tension)");
-  validate(j, msg("joint material ", id));
+  validate(j, id);
   h->model->world().joint_material(id) = j;
   return 0;
 }

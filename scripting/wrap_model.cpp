@@ -164,6 +164,12 @@ struct RunPlan {
 
 std::string where_now(const World& w) { return msg("at step ", w.step_count(), ", t = ", w.time(), " s"); }
 
+// Between steps: stop if Ctrl-C was pressed (worded only then: no string is
+// built in a step loop that goes on).
+void stop_if_interrupted(const World& w) {
+  if (interrupt_requested()) check_interrupt(where_now(w).c_str());
+}
+
 // The stepping loop shared by m:step, m:run_until and m:run. Lua runs only
 // between steps: load histories inside ScriptModel::step (before
 // World::step), the callback after the step's monitors are written.
@@ -171,7 +177,7 @@ void run_loop(lua_State* L, ScriptModel& m, const RunPlan& plan) {
   World& w = m.world();
   const long s0 = w.step_count();
   const double t0 = w.time();
-  check_interrupt(where_now(w).c_str());
+  stop_if_interrupted(w);
   Progress progress(L, t0, plan.t_end >= 0 ? plan.t_end : 0, s0, plan.steps >= 0 ? s0 + plan.steps : 0);
   for (;;) {
     if (plan.steps >= 0 && w.step_count() - s0 >= plan.steps) break;
@@ -181,7 +187,7 @@ void run_loop(lua_State* L, ScriptModel& m, const RunPlan& plan) {
       if (w.time() >= plan.t_end - slack) break;
     }
     m.step(L);
-    check_interrupt(where_now(w).c_str());
+    stop_if_interrupted(w);
     progress.update(w.time(), w.step_count());
     const long done = w.step_count() - s0;
     if (plan.callback && done % plan.every == 0) {

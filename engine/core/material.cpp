@@ -6,26 +6,30 @@
 
 namespace dda {
 
-static void require_positive(double v, const std::string& what, const char* name) {
-  if (!std::isfinite(v)) throw Error(msg(what, ": ", name, " is not a finite number (", v, ")"));
-  if (v <= 0) throw Error(msg(what, ": ", name, " must be positive, got ", v));
+// `what()` names the material; called only to word an error.
+template <typename What>
+static void require_positive(double v, const What& what, const char* name) {
+  if (!std::isfinite(v)) throw Error(msg(what(), ": ", name, " is not a finite number (", v, ")"));
+  if (v <= 0) throw Error(msg(what(), ": ", name, " must be positive, got ", v));
 }
 
-void validate(const RockMaterial& m, const std::string& what) {
+void validate(const RockMaterial& m, int index) {
+  const auto what = [index] { return msg("rock material ", index); };
   require_positive(m.density, what, "density");
   require_positive(m.youngs, what, "Young's modulus");
-  if (!std::isfinite(m.poisson)) throw Error(msg(what, ": Poisson's ratio is not a finite number"));
+  if (!std::isfinite(m.poisson)) throw Error(msg(what(), ": Poisson's ratio is not a finite number"));
   if (m.poisson < 0 || m.poisson >= 0.5)
-    throw Error(msg(what, ": Poisson's ratio must lie in [0, 0.5), got ", m.poisson));
+    throw Error(msg(what(), ": Poisson's ratio must lie in [0, 0.5), got ", m.poisson));
 }
 
-void validate(const JointMaterial& m, const std::string& what) {
+void validate(const JointMaterial& m, int index) {
+  const auto what = [index] { return msg("joint material ", index); };
   if (!std::isfinite(m.friction_deg) || m.friction_deg < 0 || m.friction_deg >= 90)
-    throw Error(msg(what, ": friction angle must lie in [0, 90) degrees, got ", m.friction_deg));
+    throw Error(msg(what(), ": friction angle must lie in [0, 90) degrees, got ", m.friction_deg));
   if (!std::isfinite(m.cohesion) || m.cohesion < 0)
-    throw Error(msg(what, ": cohesion must be zero or positive, got ", m.cohesion));
+    throw Error(msg(what(), ": cohesion must be zero or positive, got ", m.cohesion));
   if (!std::isfinite(m.tensile_strength) || m.tensile_strength < 0)
-    throw Error(msg(what, ": tensile strength must be zero or positive, got ", m.tensile_strength));
+    throw Error(msg(what(), ": tensile strength must be zero or positive, got ", m.tensile_strength));
 }
 
 Mat3 elastic_matrix(const RockMaterial& m, PlaneMode mode) {

@@ -22,10 +22,11 @@ struct JointMaterial {
   double tensile_strength = 0;   // Pa
 };
 
-// Throw dda::Error naming `what` and the parameter when a value is NaN,
-// non-positive where it must be positive, or out of range.
-void validate(const RockMaterial& m, const std::string& what);
-void validate(const JointMaterial& m, const std::string& what);
+// Throw dda::Error naming the material ("rock material 2") and the parameter
+// when a value is NaN, non-positive where it must be positive, or out of
+// range. Cheap when the values are good (the step checks every material).
+void validate(const RockMaterial& m, int index);
+void validate(const JointMaterial& m, int index);
 
 // Elastic matrix E (3×3) mapping (εx, εy, γxy) to (σx, σy, τxy).
 Mat3 elastic_matrix(const RockMaterial& m, PlaneMode mode);

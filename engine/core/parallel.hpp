@@ -4,6 +4,7 @@
 // combined serially in chunk order.
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
+#include <tbb/parallel_reduce.h>
 
 #include <cstddef>
 #include <vector>
@@ -40,24 +41,22 @@ T deterministic_sum(std::size_t n, F&& f) {
   return total;
 }
 
-// Max of f(i) over [0, n) (max is order-independent, but keep one helper).
+// Max of f(i) over [0, n), over the same fixed chunks. Max is exact in any
+// order, so partial maxima are joined as TBB pleases (no buffer to allocate:
+// this runs several times per step).
 template <typename T, typename F>
 T parallel_max(std::size_t n, T init, F&& f) {
-  const std::size_t chunks = chunk_count(n);
-  std::vector<T> partial(chunks, init);
-  tbb::parallel_for(std::size_t(0), chunks, [&](std::size_t c) {
-    T m = init;
-    const std::size_t end = std::min(n, (c + 1) * kChunk);
-    for (std::size_t i = c * kChunk; i < end; ++i) {
-      const T v = f(i);
-      if (v > m) m = v;
-    }
-    partial[c] = m;
-  });
-  T m = init;
-  for (const T& p : partial)
-    if (p > m) m = p;
-  return m;
+  return tbb::parallel_reduce(
+      tbb::blocked_range<std::size_t>(0, chunk_count(n), 1), init,
+      [&](const tbb::blocked_range<std::size_t>& chunks, T m) {
+        const std::size_t end = std::min(n, chunks.end() * kChunk);
+        for (std::size_t i = chunks.begin() * kChunk; i < end; ++i) {
+          const T v = f(i);
+          if (v > m) m = v;
+        }
+        return m;
+      },
+      [](T a, T b) { return b > a ? b : a; });
 }
 
 }  // namespace dda

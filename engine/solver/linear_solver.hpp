@@ -111,6 +111,7 @@ class PcgSolver final : public LinearSolver {
  private:
   SolveReport solve_from(const VecX& b, VecX& x, std::span<const char> changed_rows);
   bool build_patch(std::span<const char> changed_rows);
+  void size_patch_buffers(std::size_t blocks);
   double solve_on_patch(VecX& x, double bnorm, SolveReport& report);
   template <typename F>
   double chunked_sum(std::size_t blocks, F&& f);

@@ -113,6 +113,20 @@ PcgSolver::PcgSolver(std::unique_ptr<Preconditioner> pre) : pre_(std::move(pre))
 void PcgSolver::set_operator(const LinearOperator& a) {
   a_ = &a;
   pre_->setup(a);
+  if (patch_hops > 0) size_patch_buffers(static_cast<std::size_t>(a.rows()));
+}
+
+// The patch's buffers, sized for any patch when the system is: a re-solve
+// then allocates nothing, whenever its first patch comes.
+void PcgSolver::size_patch_buffers(std::size_t blocks) {
+  if (patch_mark_.size() == blocks) return;
+  patch_mark_.assign(blocks, 0);  // all zero between calls
+  patch_.reserve(blocks);
+  patch_boundary_.reserve(blocks);
+  neighbours_.reserve(256);
+  patch_p_ = VecX::Zero(6 * static_cast<Eigen::Index>(blocks));
+  patch_d_ = VecX::Zero(6 * static_cast<Eigen::Index>(blocks));
+  z_.resize(6 * static_cast<Eigen::Index>(blocks));
 }
 
 // Fused vector kernels. Each works over fixed chunks of kPcgChunk blocks,
@@ -273,7 +287,7 @@ bool PcgSolver::build_patch(std::span<const char> changed_rows) {
   const LinearOperator& a = *a_;
   const std::size_t blocks = changed_rows.size();
   const std::size_t limit = static_cast<std::size_t>(patch_max_share * static_cast<double>(blocks));
-  patch_mark_.resize(blocks, 0);  // all zero between calls
+  size_patch_buffers(blocks);  // (done by set_operator unless patch_hops was set after it)
   patch_.clear();
   patch_boundary_.clear();
   for (std::size_t i = 0; i < blocks; ++i)
@@ -318,11 +332,6 @@ bool PcgSolver::build_patch(std::span<const char> changed_rows) {
 double PcgSolver::solve_on_patch(VecX& x, double bnorm, SolveReport& report) {
   const LinearOperator& a = *a_;
   const std::size_t n = static_cast<std::size_t>(x.size()), rows = patch_.size();
-  if (static_cast<std::size_t>(patch_p_.size()) != n) {
-    patch_p_ = VecX::Zero(n);
-    patch_d_ = VecX::Zero(n);
-  }
-  z_.resize(n);
   report.patch_rows = static_cast<int>(rows);
   auto row = [&](std::size_t k) { return static_cast<std::size_t>(patch_[k]); };
   double rz = chunked_sum(rows, [&](std::size_t begin, std::size_t end) {

@@ -31,13 +31,13 @@ World& World::operator=(World&&) noexcept = default;
 // ---- Model building ---------------------------------------------------------
 
 int World::add_rock_material(const RockMaterial& m) {
-  validate(m, msg("rock material ", rocks_.size()));
+  validate(m, static_cast<int>(rocks_.size()));
   rocks_.push_back(m);
   return static_cast<int>(rocks_.size()) - 1;
 }
 
 int World::add_joint_material(const JointMaterial& m) {
-  validate(m, msg("joint material ", joints_.size()));
+  validate(m, static_cast<int>(joints_.size()));
   joints_.push_back(m);
   return static_cast<int>(joints_.size()) - 1;
 }
