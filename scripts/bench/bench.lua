@@ -2,7 +2,8 @@
 --
 -- Models:  one scene of scenes.lua: --set scene=wall --set n=40 | scene=blast
 --          --set h=2 | scene=bar; --set threads=1|2; --set steps=10 timed steps
---          after --set warmup=2 untimed ones; --set pre=block_jacobi|multigrid
+--          after --set warmup=2 untimed ones (another warmup names the row
+--          blast(0.5)@2500: timed after 2500 steps); --set pre=block_jacobi|multigrid
 --          forces a preconditioner (default: the scene's, auto); --set
 --          predict=false starts open-close iterations from the last step's
 --          contact states (predict_states = false: the engine before
@@ -45,6 +46,7 @@ else
   error("unknown scene '" .. tostring(scene) .. "' (wall, blast, bar)")
 end
 
+if warmup ~= 2 then name = string.format("%s@%d", name, warmup) end
 if pre ~= "" then m:controls{ preconditioner = pre } end
 m:controls{ predict_states = predict }
 if patch >= 0 then m:controls{ patch_hops = patch } end
