@@ -15,7 +15,7 @@ namespace dda::script {
 
 #define DDA_CONTROL_KEYS                                                                                 \
   "plane", "g0", "g1", "g2", "gg", "shear_ratio", "open_close_limit", "contact_tolerance", "contact_range",             \
-      "fixed_point_factor", "gravity", "cut_factor", "max_step_cuts", "cg_tolerance", "cg_open_close_tolerance", "predict_states", "patch_hops", "jacobi_refresh_tolerance", "preconditioner",   \
+      "fixed_point_factor", "gravity", "cut_factor", "max_step_cuts", "cg_tolerance", "cg_open_close_tolerance", "cg_static_tolerance", "predict_states", "patch_hops", "jacobi_refresh_tolerance", "preconditioner",   \
       "cg_max_iterations", "threads"
 
 void parse_controls(const Options& o, Controls& c) {
@@ -57,6 +57,7 @@ void parse_controls(const Options& o, Controls& c) {
   }
   c.cg_tolerance = o.positive("cg_tolerance", c.cg_tolerance);
   c.cg_open_close_tolerance = o.positive("cg_open_close_tolerance", c.cg_open_close_tolerance);
+  c.cg_static_tolerance = o.positive("cg_static_tolerance", c.cg_static_tolerance);
   c.predict_states = o.boolean("predict_states", c.predict_states);
   if (o.has("jacobi_refresh_tolerance")) {
     c.jacobi_refresh_tolerance = o.number("jacobi_refresh_tolerance");
@@ -118,6 +119,7 @@ void push_controls(lua_State* L, const Controls& c) {
   integer("max_step_cuts", c.max_step_cuts);
   num("cg_tolerance", c.cg_tolerance);
   num("cg_open_close_tolerance", c.cg_open_close_tolerance);
+  num("cg_static_tolerance", c.cg_static_tolerance);
   num("jacobi_refresh_tolerance", c.jacobi_refresh_tolerance);
   lua_pushboolean(L, c.predict_states);
   lua_setfield(L, -2, "predict_states");

@@ -276,13 +276,18 @@ TEST_F(LuaApi, SolverControlsAreReadableWritableAndChecked) {
       "h0 = m:controls().patch_hops\n"
       "m:controls{ patch_hops = 0 }\n"
       "h1 = m:controls().patch_hops\n"
-      "s = m:totals().patch_iterations\n");
+      "s = m:totals().patch_iterations\n"
+      "c0 = m:controls().cg_static_tolerance\n"
+      "m:controls{ cg_static_tolerance = 1e-8 }\n"
+      "c1 = m:controls().cg_static_tolerance\n");
   EXPECT_EQ(number("r0"), 0);
   EXPECT_EQ(number("r1"), 0.01);
   EXPECT_EQ(number("t1"), 1e-9);
   EXPECT_EQ(number("h0"), 8);
   EXPECT_EQ(number("h1"), 0);
   EXPECT_EQ(number("s"), 0);
+  EXPECT_EQ(number("c0"), 1e-6);
+  EXPECT_EQ(number("c1"), 1e-8);
   lua_getglobal(L, "p0");
   EXPECT_TRUE(lua_isboolean(L, -1) && lua_toboolean(L, -1));
   lua_getglobal(L, "p1");
@@ -295,6 +300,7 @@ TEST_F(LuaApi, SolverControlsAreReadableWritableAndChecked) {
   EXPECT_NE(error_of("m:controls{ patch_hops = -1 }").find("'patch_hops' must be zero (off) or positive, got -1"),
             std::string::npos);
   EXPECT_NE(error_of("m:controls{ patch_hops = 1.5 }").find("patch_hops"), std::string::npos);
+  EXPECT_NE(error_of("m:controls{ cg_static_tolerance = 0 }").find("cg_static_tolerance"), std::string::npos);
 }
 
 // FHI: direction × magnitude table, handed to the engine.
