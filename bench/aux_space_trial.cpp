@@ -1,0 +1,261 @@
+// Trial (issue 8): an auxiliary-space preconditioner for the quasi-static
+// brick walls. DDA with stiff penalty springs (g0 = 50E) behaves like an
+// interior-penalty discontinuous Galerkin method with one linear field per
+// block: its near-null space is every continuous field that is linear per
+// block, which neither block-Jacobi nor aggregates of whole blocks capture.
+// Here the continuous fields are those interpolated from displacements at the
+// blocks' vertices (shared where vertices coincide or a vertex lies on a
+// neighbour's edge), each block's DDA unknowns the least-squares linear fit to
+// the displacements of the nodes on its outline (Π). The preconditioner adds a
+// correction in that space, solved exactly here (sparse Cholesky of ΠᵀAΠ), to
+// block-Jacobi, additively or symmetrically multiplicatively. It prints the
+// CG iterations from a cold start; only the iteration counts are of interest
+// (the exact auxiliary solve is far too costly to keep). Two more variants:
+// the auxiliary operator from the blocks' own terms only (inertia and
+// elasticity, no contact springs: sparse, like a finite-element stiffness),
+// and the Galerkin operator kept while the wall steps on 10 more steps.
+//
+// Run: build/bench/aux_space_trial [N ...]   (walls wall(N), default 10 20 40)
+#include <Eigen/Cholesky>
+#include <Eigen/LU>
+#include <Eigen/SparseCholesky>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <map>
+#include <vector>
+
+#include "scenes.hpp"
+
+using namespace dda;
+
+namespace {
+
+using SpMat = Eigen::SparseMatrix<double>;
+
+struct Aux {
+  SpMat pi;  // 6·blocks × 2·nodes
+  Eigen::SimplicialLDLT<SpMat> chol, chol_elastic;
+  int nodes = 0;
+};
+
+// The DDA displacement at p for a block with reference point c: T(p)·d.
+Eigen::Matrix<double, 2, 6> dda_t(const Vec2& p, const Vec2& c) {
+  const double dx = p.x() - c.x(), dy = p.y() - c.y();
+  Eigen::Matrix<double, 2, 6> t;
+  t << 1, 0, -dy, dx, 0, dy / 2, 0, 1, dx, 0, dy, dx / 2;
+  return t;
+}
+
+void build_aux(World& w, const SpMat& a, Aux& aux) {
+  const int n = static_cast<int>(w.block_count());
+  // Nodes: block vertices, merged where they coincide (to 1e-6 m).
+  std::map<std::pair<long long, long long>, int> id;
+  std::vector<Vec2> node;
+  auto key = [](const Vec2& p) { return std::make_pair(std::llround(p.x() * 1e6), std::llround(p.y() * 1e6)); };
+  for (int b = 0; b < n; ++b)
+    for (const Vec2& v : w.block_initial_vertices(b)) {
+      auto [it, fresh] = id.emplace(key(v), static_cast<int>(node.size()));
+      if (fresh) node.push_back(v);
+    }
+  aux.nodes = static_cast<int>(node.size());
+  // Nodes on each block's outline (its vertices and others' on its edges), by a grid.
+  const double cell = 1.0;
+  std::map<std::pair<int, int>, std::vector<int>> grid;
+  for (int k = 0; k < aux.nodes; ++k)
+    grid[{static_cast<int>(std::floor(node[k].x() / cell)), static_cast<int>(std::floor(node[k].y() / cell))}].push_back(k);
+  std::vector<Eigen::Triplet<double>> trip;
+  for (int b = 0; b < n; ++b) {
+    const auto v = w.block_initial_vertices(b);
+    const Vec2 c = w.block_centroid(b);
+    std::vector<int> on;
+    for (std::size_t e = 0; e < v.size(); ++e) {
+      const Vec2 p = v[e], q = v[(e + 1) % v.size()];
+      const int x0 = static_cast<int>(std::floor(std::min(p.x(), q.x()) / cell)) - 1, x1 = static_cast<int>(std::floor(std::max(p.x(), q.x()) / cell)) + 1;
+      const int y0 = static_cast<int>(std::floor(std::min(p.y(), q.y()) / cell)) - 1, y1 = static_cast<int>(std::floor(std::max(p.y(), q.y()) / cell)) + 1;
+      for (int gx = x0; gx <= x1; ++gx)
+        for (int gy = y0; gy <= y1; ++gy) {
+          auto it = grid.find({gx, gy});
+          if (it == grid.end()) continue;
+          for (int k : it->second) {
+            const Vec2 d = q - p, r = node[k] - p;
+            const double s = r.dot(d) / d.squaredNorm();
+            if (s < -1e-9 || s > 1 + 1e-9) continue;
+            if ((r - s * d).norm() < 1e-6) on.push_back(k);
+          }
+        }
+    }
+    std::sort(on.begin(), on.end());
+    on.erase(std::unique(on.begin(), on.end()), on.end());
+    Mat6 m = Mat6::Zero();
+    for (int k : on) m += dda_t(node[k], c).transpose() * dda_t(node[k], c);
+    const Mat6 minv = m.inverse();
+    for (int k : on) {
+      const Eigen::Matrix<double, 6, 2> col = minv * dda_t(node[k], c).transpose();
+      for (int r = 0; r < 6; ++r)
+        for (int s = 0; s < 2; ++s) trip.emplace_back(6 * b + r, 2 * k + s, col(r, s));
+    }
+  }
+  aux.pi.resize(6 * n, 2 * aux.nodes);
+  aux.pi.setFromTriplets(trip.begin(), trip.end());
+  {
+    // The blocks' own terms only (inertia and elasticity, no contact springs):
+    // a sparse, finite-element-like auxiliary operator.
+    std::vector<Eigen::Triplet<double>> kt;
+    const double dt = w.controls().g1;
+    for (int b = 0; b < n; ++b) {
+      const RockMaterial& rock = w.rock_material(w.block_material(b));
+      const auto v = w.block_initial_vertices(b);
+      const Vec2 c = w.block_centroid(b);
+      // Gauss 4x4 over the bounding box (the wall's blocks are rectangles).
+      double x0 = 1e300, x1 = -1e300, y0 = 1e300, y1 = -1e300;
+      for (const Vec2& p : v) { x0 = std::min(x0, p.x()); x1 = std::max(x1, p.x()); y0 = std::min(y0, p.y()); y1 = std::max(y1, p.y()); }
+      const double gp[4] = {-0.8611363115940526, -0.3399810435848563, 0.3399810435848563, 0.8611363115940526};
+      const double gw[4] = {0.3478548451374538, 0.6521451548625461, 0.6521451548625461, 0.3478548451374538};
+      Mat6 k = Mat6::Zero();
+      for (int i = 0; i < 4; ++i)
+        for (int j = 0; j < 4; ++j) {
+          const Vec2 p((x0 + x1) / 2 + gp[i] * (x1 - x0) / 2, (y0 + y1) / 2 + gp[j] * (y1 - y0) / 2);
+          const double wq = gw[i] * gw[j] * (x1 - x0) * (y1 - y0) / 4;
+          k += (2 * rock.density / (dt * dt)) * wq * dda_t(p, c).transpose() * dda_t(p, c);
+        }
+      const double area = (x1 - x0) * (y1 - y0), e = rock.youngs, nu = rock.poisson;
+      Eigen::Matrix3d cm;
+      cm << 1, nu, 0, nu, 1, 0, 0, 0, (1 - nu) / 2;
+      k.bottomRightCorner<3, 3>() += area * e / (1 - nu * nu) * cm;
+      // Π_bᵀ K_b Π_b over the block's nodes.
+      SpMat rows = aux.pi.middleRows(6 * b, 6);
+      SpMat kb = SpMat(rows.transpose() * k.sparseView() * rows);
+      for (int o = 0; o < kb.outerSize(); ++o)
+        for (SpMat::InnerIterator it(kb, o); it; ++it) kt.emplace_back(it.row(), it.col(), it.value());
+    }
+    SpMat ke(2 * aux.nodes, 2 * aux.nodes);
+    ke.setFromTriplets(kt.begin(), kt.end());
+    aux.chol_elastic.compute(ke);
+    std::printf("  elastic auxiliary operator: nnz %ld (%s)\n", static_cast<long>(ke.nonZeros()),
+                aux.chol_elastic.info() == Eigen::Success ? "factorised" : "factorisation failed");
+  }
+  using Clock = std::chrono::steady_clock;
+  auto t0 = Clock::now();
+  SpMat ac = SpMat(aux.pi.transpose() * a * aux.pi);
+  auto t1 = Clock::now();
+  aux.chol.analyzePattern(ac);
+  auto t2 = Clock::now();
+  aux.chol.factorize(ac);
+  auto t3 = Clock::now();
+  VecX r = VecX::Ones(ac.rows()), y;
+  for (int k = 0; k < 10; ++k) y = aux.chol.solve(r);
+  auto t4 = Clock::now();
+  auto ms = [](auto a, auto b) { return std::chrono::duration<double, std::milli>(b - a).count(); };
+  std::printf("  Galerkin auxiliary operator: nnz %ld; product %.1f ms, ordering %.1f ms, factorisation %.1f ms, one solve %.2f ms (1 thread)\n",
+              static_cast<long>(ac.nonZeros()), ms(t0, t1), ms(t1, t2),
+              ms(t2, t3), ms(t3, t4) / 10);
+  if (aux.chol.info() != Eigen::Success) std::printf("  auxiliary factorisation failed\n");
+}
+
+// PCG from zero; returns iterations to reach each tolerance.
+template <typename Pre>
+std::vector<int> pcg(const SpMat& a, const VecX& b, Pre&& pre, const std::vector<double>& tols) {
+  VecX x = VecX::Zero(b.size()), r = b, z, p, ap;
+  pre(r, z);
+  p = z;
+  double rz = r.dot(z);
+  const double bn = b.norm();
+  std::vector<int> at(tols.size(), -1);
+  for (int it = 1; it <= 20000; ++it) {
+    ap = a * p;
+    const double alpha = rz / p.dot(ap);
+    x += alpha * p;
+    r -= alpha * ap;
+    const double rel = r.norm() / bn;
+    bool all = true;
+    for (std::size_t t = 0; t < tols.size(); ++t) {
+      if (at[t] < 0 && rel <= tols[t]) at[t] = it;
+      all = all && at[t] >= 0;
+    }
+    if (all) break;
+    pre(r, z);
+    const double rz2 = r.dot(z);
+    p = z + (rz2 / rz) * p;
+    rz = rz2;
+  }
+  return at;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  std::vector<int> walls;
+  for (int i = 1; i < argc; ++i) walls.push_back(std::atoi(argv[i]));
+  if (walls.empty()) walls = {10, 20, 40};
+  const std::vector<double> tols = {1e-4, 1e-6, 1e-10};
+  for (int wn : walls) {
+    World w = test::brick_wall(wn);
+    w.controls().threads = 1;
+    w.controls().preconditioner = Preconditioning::BlockJacobi;
+    for (int s = 0; s < 3; ++s) w.step();
+    const BlockSparseMatrix& bsm = w.last_matrix();
+    const SpMat a = bsm.to_sparse();
+    const VecX b = w.last_rhs();
+    const int n = bsm.rows();
+    std::vector<Mat6> dinv(n);
+    for (int i = 0; i < n; ++i) dinv[i] = bsm.value(bsm.diagonal(i)).inverse();
+    auto jacobi = [&](const VecX& r, VecX& z) {
+      z.resize(r.size());
+      for (int i = 0; i < n; ++i) z.segment<6>(6 * i) = dinv[i] * r.segment<6>(6 * i);
+    };
+    std::printf("wall(%d): %d blocks\n", wn, n);
+    Aux aux;
+    build_aux(w, a, aux);
+    auto coarse = [&](const VecX& r) -> VecX { return aux.pi * aux.chol.solve(VecX(aux.pi.transpose() * r)); };
+    auto additive = [&](const VecX& r, VecX& z) {
+      jacobi(r, z);
+      z += coarse(r);
+    };
+    // λmax(D⁻¹A) by power iteration, for the smoother weight.
+    VecX v = VecX::Ones(b.size()), t;
+    double lambda = 1;
+    for (int k = 0; k < 30; ++k) {
+      jacobi(VecX(a * v), t);
+      lambda = t.norm() / v.norm();
+      v = t / t.norm();
+    }
+    const double omega = 1.0 / lambda;
+    auto coarse_elastic = [&](const VecX& r) -> VecX { return aux.pi * aux.chol_elastic.solve(VecX(aux.pi.transpose() * r)); };
+    auto additive_elastic = [&](const VecX& r, VecX& z) {
+      jacobi(r, z);
+      z += coarse_elastic(r);
+    };
+    auto multiplicative = [&](const VecX& r, VecX& z) {
+      VecX s;
+      jacobi(r, s);
+      VecX x1 = omega * s;
+      VecX x2 = x1 + coarse(VecX(r - a * x1));
+      jacobi(VecX(r - a * x2), s);
+      z = x2 + omega * s;
+    };
+    const auto bj = pcg(a, b, jacobi, tols), ad = pcg(a, b, additive, tols), mu = pcg(a, b, multiplicative, tols), ae = pcg(a, b, additive_elastic, tols);
+    std::printf("  %d nodes (%d auxiliary unknowns), lambda_max(D^-1 A) %.2f\n", aux.nodes, 2 * aux.nodes, lambda);
+    std::printf("  CG iterations to 1e-4 / 1e-6 / 1e-10 from zero:\n");
+    std::printf("    block-Jacobi            %5d %5d %5d\n", bj[0], bj[1], bj[2]);
+    std::printf("    + auxiliary, additive   %5d %5d %5d\n", ad[0], ad[1], ad[2]);
+    std::printf("    + auxiliary, symmetric  %5d %5d %5d\n", mu[0], mu[1], mu[2]);
+    std::printf("    + elastic aux, additive %5d %5d %5d\n", ae[0], ae[1], ae[2]);
+    // The same auxiliary factorisation, 10 steps later (a stale operator is
+    // still a symmetric positive definite preconditioner).
+    for (int s = 0; s < 10; ++s) w.step();
+    const BlockSparseMatrix& later = w.last_matrix();
+    const SpMat a2 = later.to_sparse();
+    const VecX b2 = w.last_rhs();
+    std::vector<Mat6> dinv2(n);
+    for (int i = 0; i < n; ++i) dinv2[i] = later.value(later.diagonal(i)).inverse();
+    auto stale = [&](const VecX& r, VecX& z) {
+      z.resize(r.size());
+      for (int i = 0; i < n; ++i) z.segment<6>(6 * i) = dinv2[i] * r.segment<6>(6 * i);
+      z += coarse(r);
+    };
+    const auto st = pcg(a2, b2, stale, tols);
+    std::printf("    10 steps later, auxiliary operator kept  %5d %5d %5d\n", st[0], st[1], st[2]);
+  }
+}
