@@ -65,7 +65,7 @@ struct Controls {
   // cg_open_close_tolerance), and with gg = 0 a displacement error is not
   // carried on as a velocity, so solving the last pass past 1e-6 changes the
   // answer less than the path the contact states take does: wall(20) over
-  // 300 steps, 1e-6 and 1e-10 agree to 1.3e-11 m where 1e-12 differs from
+  // 300 steps, 1e-6 and 1e-10 agree to 1.7e-11 m where 1e-12 differs from
   // both by 7.5e-8 m (of 8.4e-4 m settled), and wall(40) takes 294 against
   // 486 CG iterations per step (40 against 64 ms). Where contacts slide and
   // steps are cut (wall(10), gravity tilted 22°, 200 steps), the path itself
