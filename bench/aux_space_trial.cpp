@@ -183,6 +183,18 @@ std::vector<int> pcg(const SpMat& a, const VecX& b, Pre&& pre, const std::vector
   return at;
 }
 
+// Block-Jacobi: z = D⁻¹r with the inverse 6×6 diagonal blocks of m.
+struct BlockJacobi {
+  std::vector<Mat6> dinv;
+  explicit BlockJacobi(const BlockSparseMatrix& m) : dinv(m.rows()) {
+    for (int i = 0; i < m.rows(); ++i) dinv[i] = m.value(m.diagonal(i)).inverse();
+  }
+  void operator()(const VecX& r, VecX& z) const {
+    z.resize(r.size());
+    for (std::size_t i = 0; i < dinv.size(); ++i) z.segment<6>(6 * i) = dinv[i] * r.segment<6>(6 * i);
+  }
+};
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -199,12 +211,7 @@ int main(int argc, char** argv) {
     const SpMat a = bsm.to_sparse();
     const VecX b = w.last_rhs();
     const int n = bsm.rows();
-    std::vector<Mat6> dinv(n);
-    for (int i = 0; i < n; ++i) dinv[i] = bsm.value(bsm.diagonal(i)).inverse();
-    auto jacobi = [&](const VecX& r, VecX& z) {
-      z.resize(r.size());
-      for (int i = 0; i < n; ++i) z.segment<6>(6 * i) = dinv[i] * r.segment<6>(6 * i);
-    };
+    const BlockJacobi jacobi(bsm);
     std::printf("wall(%d): %d blocks\n", wn, n);
     Aux aux;
     build_aux(w, a, aux);
@@ -248,11 +255,9 @@ int main(int argc, char** argv) {
     const BlockSparseMatrix& later = w.last_matrix();
     const SpMat a2 = later.to_sparse();
     const VecX b2 = w.last_rhs();
-    std::vector<Mat6> dinv2(n);
-    for (int i = 0; i < n; ++i) dinv2[i] = later.value(later.diagonal(i)).inverse();
+    const BlockJacobi jacobi_later(later);
     auto stale = [&](const VecX& r, VecX& z) {
-      z.resize(r.size());
-      for (int i = 0; i < n; ++i) z.segment<6>(6 * i) = dinv2[i] * r.segment<6>(6 * i);
+      jacobi_later(r, z);
       z += coarse(r);
     };
     const auto st = pcg(a2, b2, stale, tols);
