@@ -323,7 +323,7 @@ int main(int argc, char** argv) {
     row("+ auxiliary, additive", ad);
     row("+ auxiliary, symmetric", mu);
     row("+ elastic auxiliary operator, additive", ae);
-    for (double h : {2.0, 4.0}) {
+    for (double h : {1.0, 2.0, 4.0}) {
       const TwoLevelAux two(aux, h);
       auto inexact = [&](const VecX& r, VecX& z) {
         jacobi(r, z);
