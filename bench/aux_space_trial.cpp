@@ -259,6 +259,110 @@ std::vector<int> pcg(const SpMat& a, const VecX& b, Pre&& pre, const std::vector
   return at;
 }
 
+// A multilevel V-cycle for the auxiliary system: level 0 the nodes (2
+// unknowns), then square cells of side h0·2^(l−1) carrying three rigid
+// motions about their centres, Galerkin operators, block-Jacobi smoothing
+// (weight 1/λmax), optionally smoothed prolongators, a sparse Cholesky at
+// the coarsest level (under 600 unknowns).
+struct MultilevelAux {
+  struct Level {
+    SpMat a, p;  // operator; prolongator from the next level (empty on the coarsest)
+    std::vector<Eigen::MatrixXd> dinv;  // block inverses (2×2 or 3×3)
+    int bs = 2;
+    double omega = 1;
+  };
+  std::vector<Level> levels;
+  Eigen::SimplicialLDLT<SpMat> coarsest;
+
+  static std::vector<Eigen::MatrixXd> block_inverses(const SpMat& a, int bs) {
+    std::vector<Eigen::MatrixXd> inv(a.rows() / bs);
+    for (std::size_t k = 0; k < inv.size(); ++k) {
+      Eigen::MatrixXd d = Eigen::MatrixXd(a.block(bs * k, bs * k, bs, bs));
+      inv[k] = d.completeOrthogonalDecomposition().pseudoInverse();
+    }
+    return inv;
+  }
+  VecX jacobi(const Level& l, const VecX& r) const {
+    VecX z(r.size());
+    for (std::size_t k = 0; k < l.dinv.size(); ++k) z.segment(l.bs * k, l.bs) = l.dinv[k] * r.segment(l.bs * k, l.bs);
+    return z;
+  }
+  MultilevelAux(const Aux& aux, double h0, bool smooth) {
+    std::vector<Vec2> pos = aux.node;
+    Level l0;
+    l0.a = aux.ac;
+    l0.bs = 2;
+    levels.push_back(l0);
+    double h = h0;
+    while (levels.back().a.rows() > 600) {
+      Level& f = levels.back();
+      f.dinv = block_inverses(f.a, f.bs);
+      VecX v = VecX::Ones(f.a.rows()), t;
+      double lambda = 1;
+      for (int k = 0; k < 20; ++k) {
+        t = jacobi(f, VecX(f.a * v));
+        lambda = t.norm() / v.norm();
+        v = t / t.norm();
+      }
+      f.omega = 1.0 / lambda;
+      // Cells of side h over this level's points.
+      std::map<std::pair<int, int>, int> cell;
+      std::vector<int> of(pos.size());
+      for (std::size_t k = 0; k < pos.size(); ++k)
+        of[k] = cell.emplace(std::make_pair(static_cast<int>(std::floor(pos[k].x() / h)), static_cast<int>(std::floor(pos[k].y() / h))),
+                             static_cast<int>(cell.size())).first->second;
+      const int nc = static_cast<int>(cell.size());
+      std::vector<Vec2> centre(nc, Vec2::Zero());
+      std::vector<int> count(nc, 0);
+      for (std::size_t k = 0; k < pos.size(); ++k) {
+        centre[of[k]] += pos[k];
+        ++count[of[k]];
+      }
+      for (int c = 0; c < nc; ++c) centre[c] /= count[c];
+      std::vector<Eigen::Triplet<double>> t3;
+      for (std::size_t k = 0; k < pos.size(); ++k) {
+        const Vec2 d = pos[k] - centre[of[k]];
+        const int r0 = f.bs * static_cast<int>(k), c0 = 3 * of[k];
+        t3.emplace_back(r0, c0, 1);
+        t3.emplace_back(r0 + 1, c0 + 1, 1);
+        t3.emplace_back(r0, c0 + 2, -d.y());
+        t3.emplace_back(r0 + 1, c0 + 2, d.x());
+        if (f.bs == 3) t3.emplace_back(r0 + 2, c0 + 2, 1);
+      }
+      SpMat p(f.a.rows(), 3 * nc);
+      p.setFromTriplets(t3.begin(), t3.end());
+      if (smooth) {
+        // P = (I − (4/3)ω D⁻¹A)·P_tent
+        SpMat dinv(f.a.rows(), f.a.rows());
+        std::vector<Eigen::Triplet<double>> td;
+        for (std::size_t k = 0; k < f.dinv.size(); ++k)
+          for (int r = 0; r < f.bs; ++r)
+            for (int c = 0; c < f.bs; ++c) td.emplace_back(f.bs * k + r, f.bs * k + c, f.dinv[k](r, c));
+        dinv.setFromTriplets(td.begin(), td.end());
+        p = SpMat(p - (4.0 / 3.0) * f.omega * SpMat(dinv * SpMat(f.a * p)));
+      }
+      f.p = p;
+      Level c;
+      c.a = SpMat(p.transpose() * f.a * p);
+      c.bs = 3;
+      levels.push_back(c);
+      pos = centre;
+      h *= 2;
+    }
+    const SpMat& ac = levels.back().a;
+    coarsest.setShift(1e-12 * ac.diagonal().cwiseAbs().maxCoeff());
+    coarsest.compute(ac);
+  }
+  VecX vcycle(std::size_t l, const VecX& r) const {
+    if (l + 1 == levels.size()) return coarsest.solve(r);
+    const Level& f = levels[l];
+    VecX x = f.omega * jacobi(f, r);
+    x += f.p * vcycle(l + 1, VecX(f.p.transpose() * VecX(r - f.a * x)));
+    x += f.omega * jacobi(f, VecX(r - f.a * x));
+    return x;
+  }
+};
+
 // Block-Jacobi: z = D⁻¹r with the inverse 6×6 diagonal blocks of m.
 struct BlockJacobi {
   std::vector<Mat6> dinv;
@@ -376,6 +480,17 @@ int main(int argc, char** argv) {
     const BlockSparseMatrix& later = w.last_matrix();
     const SpMat a2 = later.to_sparse();
     const VecX b2 = w.last_rhs();
+    for (bool smooth : {false, true}) {
+      const MultilevelAux ml(aux, 1.0, smooth);
+      auto multilevel = [&](const VecX& r, VecX& z) {
+        jacobi(r, z);
+        z += aux.pi * ml.vcycle(0, VecX(aux.pi.transpose() * r));
+      };
+      const auto mlr = pcg(a, b, multilevel, tols);
+      char label[96];
+      std::snprintf(label, sizeof label, "+ auxiliary by a %zu-level V-cycle%s", ml.levels.size(), smooth ? " (smoothed P)" : "");
+      row(label, mlr);
+    }
     const BlockJacobi jacobi_later(later);
     auto stale = [&](const VecX& r, VecX& z) {
       jacobi_later(r, z);
