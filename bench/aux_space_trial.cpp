@@ -480,6 +480,13 @@ int main(int argc, char** argv) {
     const BlockSparseMatrix& later = w.last_matrix();
     const SpMat a2 = later.to_sparse();
     const VecX b2 = w.last_rhs();
+    {
+      // How hard the auxiliary system is by itself: 2×2 block-Jacobi PCG on it.
+      const TwoLevelAux nodes_only(aux, 1.0);
+      const VecX b_aux = aux.pi.transpose() * b;
+      const auto alone = pcg(aux.ac, b_aux, [&](const VecX& r, VecX& z) { z = nodes_only.jacobi(r); }, tols);
+      row("(the auxiliary system alone, node block-Jacobi)", alone);
+    }
     for (bool smooth : {false, true}) {
       const MultilevelAux ml(aux, 1.0, smooth);
       auto multilevel = [&](const VecX& r, VecX& z) {
