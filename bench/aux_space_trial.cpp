@@ -15,7 +15,10 @@
 // elasticity, no contact springs: sparse, like a finite-element stiffness),
 // an inexact auxiliary solve (2×2 block-Jacobi on the nodes plus an exact
 // solve on square cells of nodes carrying their rigid motions, no product by
-// ΠᵀAΠ), and the Galerkin operator kept while the wall steps on 10 more steps.
+// ΠᵀAΠ; also in symmetric form, and as a two-level V-cycle on ΠᵀAΠ), a
+// multilevel V-cycle on ΠᵀAΠ (cells of 1, 2, 4 m ...), the auxiliary system
+// alone under block-Jacobi CG, and the Galerkin operator kept while the wall
+// steps on 10 more steps.
 //
 // Run: build/bench/aux_space_trial [N ...]   (walls wall(N), default 10 20 40)
 #include <Eigen/Cholesky>
