@@ -117,6 +117,20 @@ struct TwoLevelAux {
   }
 };
 
+// λmax of M⁻¹A by power iteration from the ones vector (a lower bound, for
+// smoother weights); precondition(y) returns M⁻¹y.
+template <typename Precondition>
+double largest_eigenvalue(const SpMat& a, Precondition&& precondition, int iterations) {
+  VecX v = VecX::Ones(a.rows());
+  double lambda = 1;
+  for (int k = 0; k < iterations; ++k) {
+    const VecX t = precondition(VecX(a * v));
+    lambda = t.norm() / v.norm();
+    v = t / t.norm();
+  }
+  return lambda;
+}
+
 // The DDA displacement at p for a block with reference point c: T(p)·d.
 Eigen::Matrix<double, 2, 6> dda_t(const Vec2& p, const Vec2& c) {
   const double dx = p.x() - c.x(), dy = p.y() - c.y();
@@ -300,14 +314,7 @@ struct MultilevelAux {
     while (levels.back().a.rows() > 600) {
       Level& f = levels.back();
       f.dinv = block_inverses(f.a, f.bs);
-      VecX v = VecX::Ones(f.a.rows()), t;
-      double lambda = 1;
-      for (int k = 0; k < 20; ++k) {
-        t = jacobi(f, VecX(f.a * v));
-        lambda = t.norm() / v.norm();
-        v = t / t.norm();
-      }
-      f.omega = 1.0 / lambda;
+      f.omega = 1.0 / largest_eigenvalue(f.a, [&](const VecX& y) { return jacobi(f, y); }, 20);
       // Cells of side h over this level's points.
       std::map<std::pair<int, int>, int> cell;
       std::vector<int> of(pos.size());
@@ -410,14 +417,12 @@ int main(int argc, char** argv) {
       jacobi(r, z);
       z += coarse(r);
     };
-    // λmax(D⁻¹A) by power iteration, for the smoother weight.
-    VecX v = VecX::Ones(b.size()), t;
-    double lambda = 1;
-    for (int k = 0; k < 30; ++k) {
-      jacobi(VecX(a * v), t);
-      lambda = t.norm() / v.norm();
-      v = t / t.norm();
-    }
+    // λmax(D⁻¹A), for the smoother weight.
+    const double lambda = largest_eigenvalue(a, [&](const VecX& y) {
+      VecX z;
+      jacobi(y, z);
+      return z;
+    }, 30);
     const double omega = 1.0 / lambda;
     auto coarse_elastic = [&](const VecX& r) -> VecX { return aux.pi * aux.chol_elastic.solve(VecX(aux.pi.transpose() * r)); };
     auto additive_elastic = [&](const VecX& r, VecX& z) {
@@ -462,13 +467,7 @@ int main(int argc, char** argv) {
       row(label, ins);
       // The auxiliary system solved by a two-level V-cycle of its own (smoothing
       // on the nodes needs products by ΠᵀAΠ: in the engine, fine products).
-      VecX va = VecX::Ones(aux.ac.rows()), ta;
-      double lambda_aux = 1;
-      for (int k = 0; k < 30; ++k) {
-        ta = two.jacobi(VecX(aux.ac * va));
-        lambda_aux = ta.norm() / va.norm();
-        va = ta / ta.norm();
-      }
+      const double lambda_aux = largest_eigenvalue(aux.ac, [&](const VecX& y) { return two.jacobi(y); }, 30);
       auto aux_vcycle = [&](const VecX& r, VecX& z) {
         jacobi(r, z);
         z += aux.pi * two.vcycle(aux.ac, VecX(aux.pi.transpose() * r), 1.0 / lambda_aux);
