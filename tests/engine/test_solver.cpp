@@ -276,6 +276,12 @@ TEST(Solver, Symmetric6KeepsTheMatrixAndItsProduct) {
 // matrix, compared bit for bit on random symmetric matrices and vectors,
 // with exact zeros and negative zeros mixed in.
 TEST(Solver, Symmetric6ProductHasTheBitsOfTheFullProduct) {
+#ifdef DDA_NATIVE_ARCH
+  // With -march=native Eigen's Mat6·Vec6 uses FMA and wider packets: the
+  // two products then agree only to round-off, and this build's results
+  // differ from the portable build's in their last bits anyway.
+  GTEST_SKIP() << "bit identity with Eigen's product holds for the portable build (DDA_NATIVE_ARCH=OFF)";
+#endif
   std::mt19937_64 rng(12345);
   std::uniform_real_distribution<double> uniform(-1, 1);
   std::uniform_int_distribution<int> pick(0, 9);
