@@ -18,7 +18,12 @@
 // ΠᵀAΠ; also in symmetric form, and as a two-level V-cycle on ΠᵀAΠ), a
 // multilevel V-cycle on ΠᵀAΠ (cells of 1, 2, 4 m ...), the auxiliary system
 // alone under block-Jacobi CG, and the Galerkin operator kept while the wall
-// steps on 10 more steps.
+// steps on 10 more steps. Then continuous coarse spaces of bilinear fields on
+// a square grid: interpolated to the nodes (with and without node Jacobi),
+// or mapped straight to each block's centroid value and gradient (no nodes),
+// solved exactly or, on the 0.5 m grid, by geometric V-cycles (Jacobi or
+// Gauss-Seidel smoothing, bilinear or smoothed prolongators, with and
+// without a penalty on the grid cells' hourglass modes).
 //
 // Run: build/bench/aux_space_trial [N ...]   (walls wall(N), default 10 20 40)
 #include <Eigen/Cholesky>
@@ -114,6 +119,216 @@ struct TwoLevelAux {
     const VecX x1 = omega * jacobi(r);
     const VecX x2 = x1 + cells(VecX(r - ac * x1));
     return x2 + omega * jacobi(VecX(r - ac * x2));
+  }
+};
+
+// A continuous coarse space: bilinear hat functions on a square grid of side
+// h over the nodes (only grid points whose cells hold nodes), interpolated to
+// the auxiliary nodes (Q: 2·nodes × 2·grid points), its Galerkin operator
+// QᵀΠᵀAΠQ factorised.
+struct BilinearCoarse {
+  SpMat q;
+  Eigen::SimplicialLDLT<SpMat> chol;
+  int points = 0;
+  BilinearCoarse(const Aux& aux, const SpMat& ac, double h) {
+    Vec2 lo = aux.node[0];
+    for (const Vec2& p : aux.node) lo = lo.cwiseMin(p);
+    std::map<std::pair<int, int>, int> id;
+    std::vector<Eigen::Triplet<double>> t;
+    for (int k = 0; k < aux.nodes; ++k) {
+      const Vec2 s = (aux.node[k] - lo) / h;
+      const int i = static_cast<int>(std::floor(s.x())), j = static_cast<int>(std::floor(s.y()));
+      const double fx = s.x() - i, fy = s.y() - j;
+      for (int di = 0; di < 2; ++di)
+        for (int dj = 0; dj < 2; ++dj) {
+          const double wgt = (di ? fx : 1 - fx) * (dj ? fy : 1 - fy);
+          if (wgt < 1e-12) continue;
+          auto [it, fresh] = id.emplace(std::make_pair(i + di, j + dj), static_cast<int>(id.size()));
+          t.emplace_back(2 * k, 2 * it->second, wgt);
+          t.emplace_back(2 * k + 1, 2 * it->second + 1, wgt);
+        }
+    }
+    points = static_cast<int>(id.size());
+    q.resize(2 * aux.nodes, 2 * points);
+    q.setFromTriplets(t.begin(), t.end());
+    chol.compute(SpMat(q.transpose() * ac * q));
+    if (chol.info() != Eigen::Success) std::printf("  bilinear coarse factorisation failed (h %g)\n", h);
+  }
+  VecX solve(const VecX& r) const { return q * chol.solve(VecX(q.transpose() * r)); }
+};
+
+// The same continuous coarse space mapped straight to the blocks: each
+// block's six unknowns the bilinear field's value and derivatives at its
+// centroid (rotation, strains), from the four grid points of the cell that
+// holds the centroid; no nodes. Z: 6·blocks × 2·grid points.
+struct CentroidCoarse {
+  SpMat z, ac;
+  Eigen::SimplicialLDLT<SpMat> chol;
+  int points = 0;
+  std::vector<std::pair<int, int>> index;  // each grid point's (i, j)
+  CentroidCoarse(const World& w, const SpMat& a, double h) {
+    const int n = static_cast<int>(w.block_count());
+    Vec2 lo = w.block_centroid(0);
+    for (int b = 0; b < n; ++b) lo = lo.cwiseMin(w.block_centroid(b));
+    std::map<std::pair<int, int>, int> id;
+    std::vector<Eigen::Triplet<double>> t;
+    for (int b = 0; b < n; ++b) {
+      const Vec2 s = (w.block_centroid(b) - lo) / h;
+      const int i = static_cast<int>(std::floor(s.x())), j = static_cast<int>(std::floor(s.y()));
+      const double fx = s.x() - i, fy = s.y() - j;
+      for (int di = 0; di < 2; ++di)
+        for (int dj = 0; dj < 2; ++dj) {
+          const double nx = di ? fx : 1 - fx, ny = dj ? fy : 1 - fy;
+          const double wv = nx * ny, wx = (di ? 1 : -1) * ny / h, wy = nx * (dj ? 1 : -1) / h;
+          auto [it, fresh] = id.emplace(std::make_pair(i + di, j + dj), static_cast<int>(id.size()));
+          const int cu = 2 * it->second, cv = cu + 1;
+          // u-component: (w, 0, -w_y/2, w_x, 0, w_y); v-component: (0, w, w_x/2, 0, w_y, w_x).
+          const double col_u[6] = {wv, 0, -wy / 2, wx, 0, wy}, col_v[6] = {0, wv, wx / 2, 0, wy, wx};
+          for (int r = 0; r < 6; ++r) {
+            if (col_u[r] != 0) t.emplace_back(6 * b + r, cu, col_u[r]);
+            if (col_v[r] != 0) t.emplace_back(6 * b + r, cv, col_v[r]);
+          }
+        }
+    }
+    points = static_cast<int>(id.size());
+    index.resize(points);
+    for (const auto& [ij, k] : id) index[k] = ij;
+    z.resize(6 * n, 2 * points);
+    z.setFromTriplets(t.begin(), t.end());
+    ac = SpMat(z.transpose() * a * z);
+    chol.setShift(1e-12 * ac.diagonal().cwiseAbs().maxCoeff());
+    using Clock = std::chrono::steady_clock;
+    const auto t0 = Clock::now();
+    chol.compute(ac);
+    const auto t1 = Clock::now();
+    VecX y = VecX::Ones(ac.rows());
+    for (int k = 0; k < 10; ++k) y = chol.solve(y);
+    const auto t2 = Clock::now();
+    auto ms = [](auto from, auto to) { return std::chrono::duration<double, std::milli>(to - from).count(); };
+    std::printf("  bilinear %g m at centroids: grid system nnz %ld, factor nnz %ld; factorisation %.1f ms, one solve %.2f ms (1 thread)\n", h,
+                static_cast<long>(ac.nonZeros()), static_cast<long>(chol.matrixL().nestedExpression().nonZeros()), ms(t0, t1), ms(t1, t2) / 10);
+    if (chol.info() != Eigen::Success) std::printf("  centroid coarse factorisation failed (h %g)\n", h);
+  }
+  VecX solve(const VecX& r) const { return z * chol.solve(VecX(z.transpose() * r)); }
+  // ZᵀAZ plus an hourglass penalty on every grid cell with four points: the
+  // field's cross term (f00 − f10 − f01 + f11) in each component, which no
+  // block's centroid value and gradient see, weighted by alpha times the mean
+  // diagonal of the grid system.
+  SpMat stabilised(double alpha) const {
+    std::map<std::pair<int, int>, int> id;
+    for (int k = 0; k < points; ++k) id[index[k]] = k;
+    const double d = alpha * ac.diagonal().mean();
+    std::vector<Eigen::Triplet<double>> t;
+    for (int k = 0; k < points; ++k) {
+      const auto [i, j] = index[k];
+      int c[4] = {k, -1, -1, -1};
+      const std::pair<int, int> other[3] = {{i + 1, j}, {i, j + 1}, {i + 1, j + 1}};
+      bool all = true;
+      for (int m = 0; m < 3; ++m) {
+        auto it = id.find(other[m]);
+        if (it == id.end()) { all = false; break; }
+        c[m + 1] = it->second;
+      }
+      if (!all) continue;
+      const double sign[4] = {1, -1, -1, 1};
+      for (int comp = 0; comp < 2; ++comp)
+        for (int m = 0; m < 4; ++m)
+          for (int n2 = 0; n2 < 4; ++n2) t.emplace_back(2 * c[m] + comp, 2 * c[n2] + comp, d * sign[m] * sign[n2]);
+    }
+    SpMat s(ac.rows(), ac.cols());
+    s.setFromTriplets(t.begin(), t.end());
+    return SpMat(ac + s);
+  }
+};
+
+template <typename Precondition>
+double largest_eigenvalue(const SpMat& a, Precondition&& precondition, int iterations);
+
+// A geometric V-cycle on the grid system ZᵀAZ: grids of side h, 2h, 4h ...
+// with bilinear prolongation (fine points between coarse ones take their
+// average), Galerkin operators, damped 2×2 point-Jacobi (sweeps each way) or
+// symmetric Gauss-Seidel smoothing, sparse Cholesky under 600 unknowns.
+struct GridMultigrid {
+  struct Level {
+    SpMat a, p;
+    std::vector<Eigen::Matrix2d> dinv;
+    double omega = 1;
+  };
+  std::vector<Level> levels;
+  Eigen::SimplicialLDLT<SpMat> coarsest;
+  int sweeps = 1;
+  bool gauss_seidel = false;
+  VecX jacobi(const Level& l, const VecX& r) const {
+    VecX z(r.size());
+    for (std::size_t k = 0; k < l.dinv.size(); ++k) z.segment<2>(2 * k) = l.dinv[k] * r.segment<2>(2 * k);
+    return z;
+  }
+  // prolongator_smoothing: damped Jacobi steps applied to each bilinear P.
+  GridMultigrid(const SpMat& a0, std::vector<std::pair<int, int>> index, int sweeps_, bool gs, int prolongator_smoothing)
+      : sweeps(sweeps_), gauss_seidel(gs) {
+    levels.push_back({a0, {}, {}, 1});
+    while (levels.back().a.rows() > 600) {
+      Level& f = levels.back();
+      f.dinv.resize(f.a.rows() / 2);
+      for (std::size_t k = 0; k < f.dinv.size(); ++k) f.dinv[k] = Eigen::Matrix2d(f.a.block(2 * k, 2 * k, 2, 2)).inverse();
+      f.omega = (4.0 / 3.0) / largest_eigenvalue(f.a, [&](const VecX& y) { return jacobi(f, y); }, 20);
+      std::map<std::pair<int, int>, int> id;
+      std::vector<Eigen::Triplet<double>> t;
+      auto floor2 = [](int i) { return i >= 0 ? i / 2 : -((1 - i) / 2); };
+      for (std::size_t k = 0; k < index.size(); ++k) {
+        const auto [i, j] = index[k];
+        std::vector<std::pair<int, double>> xs, ys;
+        if (i % 2 == 0) xs = {{floor2(i), 1.0}}; else xs = {{floor2(i), 0.5}, {floor2(i) + 1, 0.5}};
+        if (j % 2 == 0) ys = {{floor2(j), 1.0}}; else ys = {{floor2(j), 0.5}, {floor2(j) + 1, 0.5}};
+        for (auto [ci, wx] : xs)
+          for (auto [cj, wy] : ys) {
+            const int c = id.emplace(std::make_pair(ci, cj), static_cast<int>(id.size())).first->second;
+            t.emplace_back(2 * k, 2 * c, wx * wy);
+            t.emplace_back(2 * k + 1, 2 * c + 1, wx * wy);
+          }
+      }
+      f.p.resize(f.a.rows(), 2 * static_cast<int>(id.size()));
+      f.p.setFromTriplets(t.begin(), t.end());
+      if (prolongator_smoothing > 0) {
+        SpMat dinv(f.a.rows(), f.a.rows());
+        std::vector<Eigen::Triplet<double>> td;
+        for (std::size_t k = 0; k < f.dinv.size(); ++k)
+          for (int r = 0; r < 2; ++r)
+            for (int c2 = 0; c2 < 2; ++c2) td.emplace_back(2 * k + r, 2 * k + c2, f.dinv[k](r, c2));
+        dinv.setFromTriplets(td.begin(), td.end());
+        for (int m = 0; m < prolongator_smoothing; ++m) {
+          f.p = SpMat(f.p - f.omega * SpMat(dinv * SpMat(f.a * f.p)));
+          f.p.prune(1e-14, 1);
+        }
+      }
+      index.assign(id.size(), {});
+      for (const auto& [ij, k] : id) index[k] = ij;
+      Level c;
+      c.a = SpMat(f.p.transpose() * f.a * f.p);
+      levels.push_back(c);
+    }
+    const SpMat& ac = levels.back().a;
+    coarsest.setShift(1e-12 * ac.diagonal().cwiseAbs().maxCoeff());
+    coarsest.compute(ac);
+  }
+  VecX smooth(const Level& f, const VecX& r, VecX x, bool forward) const {
+    for (int s = 0; s < sweeps; ++s) {
+      const VecX res = r - f.a * x;
+      if (gauss_seidel) {
+        if (forward) x += f.a.triangularView<Eigen::Lower>().solve(res);
+        else x += f.a.triangularView<Eigen::Upper>().solve(res);
+      } else {
+        x += f.omega * jacobi(f, res);
+      }
+    }
+    return x;
+  }
+  VecX vcycle(std::size_t l, const VecX& r) const {
+    if (l + 1 == levels.size()) return coarsest.solve(r);
+    const Level& f = levels[l];
+    VecX x = smooth(f, r, VecX::Zero(r.size()), true);
+    x += f.p * vcycle(l + 1, VecX(f.p.transpose() * VecX(r - f.a * x)));
+    return smooth(f, r, x, false);
   }
 };
 
@@ -373,6 +588,56 @@ struct MultilevelAux {
   }
 };
 
+// Additive Schwarz on vertex patches: for every auxiliary node, the blocks
+// whose outline holds it, their rows of A solved exactly together (a patch
+// holds the continuous fields local to it, which block-Jacobi cannot see).
+// Star patches instead: each block with every block it is coupled to.
+struct Patches {
+  std::vector<std::vector<int>> blocks;
+  std::vector<Eigen::LDLT<Eigen::MatrixXd>> solve;
+  static std::vector<std::vector<int>> at_vertices(const Aux& aux) {
+    std::vector<std::vector<int>> all;
+    for (int k = 0; k < aux.nodes; ++k) {
+      std::vector<int> p;
+      for (SpMat::InnerIterator it(aux.pi, 2 * k); it; ++it) p.push_back(static_cast<int>(it.row()) / 6);
+      std::sort(p.begin(), p.end());
+      p.erase(std::unique(p.begin(), p.end()), p.end());
+      if (p.size() >= 2) all.push_back(p);
+    }
+    return all;
+  }
+  static std::vector<std::vector<int>> stars(const BlockSparseMatrix& m) {
+    std::vector<std::vector<int>> all(m.rows());
+    for (int i = 0; i < m.rows(); ++i)
+      for (int k = m.row_begin(i); k < m.row_end(i); ++k) all[i].push_back(m.col(k));
+    return all;
+  }
+  Patches(const BlockSparseMatrix& m, const std::vector<std::vector<int>>& lists) {
+    for (const auto& p : lists) {
+      const int q = static_cast<int>(p.size());
+      Eigen::MatrixXd d = Eigen::MatrixXd::Zero(6 * q, 6 * q);
+      for (int i = 0; i < q; ++i)
+        for (int j = 0; j < q; ++j) {
+          const int at = m.find(p[i], p[j]);
+          if (at >= 0) d.block<6, 6>(6 * i, 6 * j) = m.value(at);
+        }
+      blocks.push_back(p);
+      solve.emplace_back(d);
+    }
+  }
+  VecX apply(const VecX& r) const {
+    VecX z = VecX::Zero(r.size());
+    for (std::size_t k = 0; k < blocks.size(); ++k) {
+      const auto& p = blocks[k];
+      VecX rp(6 * p.size());
+      for (std::size_t i = 0; i < p.size(); ++i) rp.segment<6>(6 * i) = r.segment<6>(6 * p[i]);
+      const VecX zp = solve[k].solve(rp);
+      for (std::size_t i = 0; i < p.size(); ++i) z.segment<6>(6 * p[i]) += zp.segment<6>(6 * i);
+    }
+    return z;
+  }
+};
+
 // Block-Jacobi: z = D⁻¹r with the inverse 6×6 diagonal blocks of m.
 struct BlockJacobi {
   std::vector<Mat6> dinv;
@@ -475,6 +740,96 @@ int main(int argc, char** argv) {
       const auto vc = pcg(a, b, aux_vcycle, tols);
       std::snprintf(label, sizeof label, "  auxiliary by a V-cycle (smooth, cells, smooth)");
       row(label, vc);
+    }
+    for (double h : {1.0, 2.0, 4.0}) {
+      const BilinearCoarse bc(aux, aux.ac, h);
+      const TwoLevelAux nodes(aux, 1e9);
+      char label[96];
+      auto direct = [&](const VecX& r, VecX& z) {
+        jacobi(r, z);
+        z += aux.pi * bc.solve(VecX(aux.pi.transpose() * r));
+      };
+      std::snprintf(label, sizeof label, "+ bilinear %g m coarse only (%d points)", h, bc.points);
+      row(label, pcg(a, b, direct, tols));
+      auto with_nodes = [&](const VecX& r, VecX& z) {
+        jacobi(r, z);
+        const VecX ra = aux.pi.transpose() * r;
+        z += aux.pi * VecX(nodes.jacobi(ra) + bc.solve(ra));
+      };
+      std::snprintf(label, sizeof label, "+ auxiliary, node Jacobi + bilinear %g m", h);
+      row(label, pcg(a, b, with_nodes, tols));
+      const VecX b_aux = aux.pi.transpose() * b;
+      const auto alone = pcg(aux.ac, b_aux, [&](const VecX& r, VecX& z) { z = nodes.jacobi(r) + bc.solve(r); }, tols);
+      row("  (auxiliary system alone, node Jacobi + bilinear)", alone);
+    }
+    // The continuous coarse space mapped to the blocks' centroids: solved
+    // exactly on grids of 0.5 to 4 m; on the 0.5 m grid also by geometric
+    // V-cycles (and, for comparison, the grid system alone under them).
+    for (double h : {0.5, 1.0, 2.0, 4.0}) {
+      const CentroidCoarse cc(w, a, h);
+      char label[96];
+      auto additive_c = [&](const VecX& r, VecX& z) {
+        jacobi(r, z);
+        z += cc.solve(r);
+      };
+      std::snprintf(label, sizeof label, "+ bilinear %g m at centroids (%d points)", h, cc.points);
+      row(label, pcg(a, b, additive_c, tols));
+      auto symmetric_c = [&](const VecX& r, VecX& z) {
+        VecX s;
+        jacobi(r, s);
+        VecX x1 = omega * s;
+        VecX x2 = x1 + cc.solve(VecX(r - a * x1));
+        jacobi(VecX(r - a * x2), s);
+        z = x2 + omega * s;
+      };
+      row("  the same, symmetric", pcg(a, b, symmetric_c, tols));
+      if (h > 0.5) continue;
+      const VecX b_grid = cc.z.transpose() * b;
+      // One V-cycle on grid operator g as the coarse solve; variant 0: Jacobi,
+      // 1: two Jacobi sweeps, 2: symmetric Gauss-Seidel.
+      auto vcycle_rows = [&](const SpMat& g, const char* what, bool alone, int p_smoothing) {
+        for (int variant = 0; variant < 3; ++variant) {
+          const GridMultigrid mg(g, cc.index, variant == 1 ? 2 : 1, variant == 2, p_smoothing);
+          auto vc = [&](const VecX& r, VecX& z) {
+            jacobi(r, z);
+            z += cc.z * mg.vcycle(0, VecX(cc.z.transpose() * r));
+          };
+          std::snprintf(label, sizeof label, "  %s, %zu-level V-cycle, %s", what, mg.levels.size(),
+                        variant == 0 ? "Jacobi" : variant == 1 ? "Jacobi x2" : "sym. GS");
+          row(label, pcg(a, b, vc, tols));
+          if (alone) row("    (the grid system alone under it)", pcg(g, b_grid, [&](const VecX& r, VecX& z) { z = mg.vcycle(0, r); }, tols));
+        }
+      };
+      vcycle_rows(cc.ac, "grid", true, 0);
+      vcycle_rows(cc.ac, "P smoothed twice", false, 2);
+      for (double alpha : {0.01, 0.1}) {
+        const SpMat stable = cc.stabilised(alpha);
+        const Eigen::SimplicialLDLT<SpMat> exact(stable);
+        auto ex = [&](const VecX& r, VecX& z) {
+          jacobi(r, z);
+          z += cc.z * VecX(exact.solve(VecX(cc.z.transpose() * r)));
+        };
+        std::snprintf(label, sizeof label, "  hourglass penalty %g, exact", alpha);
+        row(label, pcg(a, b, ex, tols));
+        char what[48];
+        std::snprintf(what, sizeof what, "hourglass penalty %g", alpha);
+        vcycle_rows(stable, what, false, 0);
+      }
+    }
+    for (bool star : {false, true}) {
+      // Patch Schwarz, alone and with continuous coarse spaces solved exactly.
+      const Patches patches(bsm, star ? Patches::stars(bsm) : Patches::at_vertices(aux));
+      std::size_t largest = 0;
+      for (const auto& p : patches.blocks) largest = std::max(largest, p.size());
+      std::printf("  %zu %s patches, up to %zu blocks\n", patches.blocks.size(), star ? "star" : "vertex", largest);
+      row(star ? "star patches (additive Schwarz)" : "vertex patches (additive Schwarz)",
+          pcg(a, b, [&](const VecX& r, VecX& z) { z = patches.apply(r); }, tols));
+      for (double h : {2.0, 4.0, 8.0}) {
+        const CentroidCoarse cc(w, a, h);
+        char label[96];
+        std::snprintf(label, sizeof label, "  + bilinear %g m at centroids", h);
+        row(label, pcg(a, b, [&](const VecX& r, VecX& z) { z = patches.apply(r) + cc.solve(r); }, tols));
+      }
     }
     // The same auxiliary factorisation, 10 steps later (a stale operator is
     // still a symmetric positive definite preconditioner).
