@@ -53,26 +53,67 @@ struct Aux {
   std::vector<Vec2> node;
 };
 
-// An inexact auxiliary solve with no product by ΠᵀAΠ: 2×2 block-Jacobi on the
-// nodes plus an exact solve on aggregates of nodes (square cells of side h),
-// each carrying the three rigid motions (additive two-level).
-struct TwoLevelAux {
+// 2×2 block-Jacobi on the auxiliary nodes (pseudo-inverses: a node no fit
+// sees has a zero diagonal block).
+struct NodeJacobi {
   std::vector<Eigen::Matrix2d> dinv;
-  SpMat p;  // 2·nodes × 3·aggregates
-  Eigen::SimplicialLDLT<SpMat> coarse;
-  int aggregates = 0;
-  TwoLevelAux(const Aux& aux, double h) {
-    const int m = aux.nodes;
-    dinv.resize(m);
+  explicit NodeJacobi(const Aux& aux) : dinv(aux.nodes) {
     double largest = 0;
-    for (int k = 0; k < m; ++k) largest = std::max(largest, Eigen::Matrix2d(aux.ac.block(2 * k, 2 * k, 2, 2)).norm());
+    for (int k = 0; k < aux.nodes; ++k) largest = std::max(largest, Eigen::Matrix2d(aux.ac.block(2 * k, 2 * k, 2, 2)).norm());
     int weak = 0;
-    for (int k = 0; k < m; ++k) {
+    for (int k = 0; k < aux.nodes; ++k) {
       const Eigen::Matrix2d d = aux.ac.block(2 * k, 2 * k, 2, 2);
       if (d.norm() < 1e-8 * largest) ++weak;
       dinv[k] = d.completeOrthogonalDecomposition().pseudoInverse();
     }
     if (weak) std::printf("  %d nodes with a diagonal under 1e-8 of the largest\n", weak);
+  }
+  VecX operator()(const VecX& r) const {
+    VecX z(r.size());
+    for (std::size_t k = 0; k < dinv.size(); ++k) z.segment<2>(2 * k) = dinv[k] * r.segment<2>(2 * k);
+    return z;
+  }
+};
+
+// λmax of M⁻¹A by power iteration from the ones vector (a lower bound, for
+// smoother weights); precondition(y) returns M⁻¹y.
+template <typename Precondition>
+double largest_eigenvalue(const SpMat& a, Precondition&& precondition, int iterations) {
+  VecX v = VecX::Ones(a.rows());
+  double lambda = 1;
+  for (int k = 0; k < iterations; ++k) {
+    const VecX t = precondition(VecX(a * v));
+    lambda = t.norm() / v.norm();
+    v = t / t.norm();
+  }
+  return lambda;
+}
+
+// A smoothed prolongator, p − ω·D⁻¹·A·p, D⁻¹ given as its square diagonal
+// blocks (of any fixed size).
+template <typename Block>
+SpMat smoothed(const SpMat& a, const std::vector<Block>& dinv, double omega, const SpMat& p) {
+  std::vector<Eigen::Triplet<double>> t;
+  for (std::size_t k = 0; k < dinv.size(); ++k) {
+    const int bs = static_cast<int>(dinv[k].rows());
+    for (int r = 0; r < bs; ++r)
+      for (int c = 0; c < bs; ++c) t.emplace_back(bs * k + r, bs * k + c, dinv[k](r, c));
+  }
+  SpMat d(a.rows(), a.rows());
+  d.setFromTriplets(t.begin(), t.end());
+  return SpMat(p - omega * SpMat(d * SpMat(a * p)));
+}
+
+// An inexact auxiliary solve with no product by ΠᵀAΠ: 2×2 block-Jacobi on the
+// nodes plus an exact solve on aggregates of nodes (square cells of side h),
+// each carrying the three rigid motions (additive two-level).
+struct TwoLevelAux {
+  NodeJacobi jacobi;
+  SpMat p;  // 2·nodes × 3·aggregates
+  Eigen::SimplicialLDLT<SpMat> coarse;
+  int aggregates = 0;
+  TwoLevelAux(const Aux& aux, double h) : jacobi(aux) {
+    const int m = aux.nodes;
     std::map<std::pair<int, int>, int> cell;
     std::vector<int> agg(m);
     for (int k = 0; k < m; ++k) {
@@ -105,11 +146,6 @@ struct TwoLevelAux {
     const SpMat ac = SpMat(p.transpose() * aux.ac * p);
     coarse.setShift(1e-12 * ac.diagonal().cwiseAbs().maxCoeff());
     coarse.compute(ac);
-  }
-  VecX jacobi(const VecX& r) const {
-    VecX z(r.size());
-    for (std::size_t k = 0; k < dinv.size(); ++k) z.segment<2>(2 * k) = dinv[k] * r.segment<2>(2 * k);
-    return z;
   }
   VecX cells(const VecX& r) const { return p * coarse.solve(VecX(p.transpose() * r)); }
   VecX solve(const VecX& r) const { return jacobi(r) + cells(r); }
@@ -241,9 +277,6 @@ struct CentroidCoarse {
   }
 };
 
-template <typename Precondition>
-double largest_eigenvalue(const SpMat& a, Precondition&& precondition, int iterations);
-
 // A geometric V-cycle on the grid system ZᵀAZ: grids of side h, 2h, 4h ...
 // with bilinear prolongation (fine points between coarse ones take their
 // average), Galerkin operators, damped 2×2 point-Jacobi (sweeps each way) or
@@ -289,17 +322,9 @@ struct GridMultigrid {
       }
       f.p.resize(f.a.rows(), 2 * static_cast<int>(id.size()));
       f.p.setFromTriplets(t.begin(), t.end());
-      if (prolongator_smoothing > 0) {
-        SpMat dinv(f.a.rows(), f.a.rows());
-        std::vector<Eigen::Triplet<double>> td;
-        for (std::size_t k = 0; k < f.dinv.size(); ++k)
-          for (int r = 0; r < 2; ++r)
-            for (int c2 = 0; c2 < 2; ++c2) td.emplace_back(2 * k + r, 2 * k + c2, f.dinv[k](r, c2));
-        dinv.setFromTriplets(td.begin(), td.end());
-        for (int m = 0; m < prolongator_smoothing; ++m) {
-          f.p = SpMat(f.p - f.omega * SpMat(dinv * SpMat(f.a * f.p)));
-          f.p.prune(1e-14, 1);
-        }
+      for (int m = 0; m < prolongator_smoothing; ++m) {
+        f.p = smoothed(f.a, f.dinv, f.omega, f.p);
+        f.p.prune(1e-14, 1);
       }
       index.assign(id.size(), {});
       for (const auto& [ij, k] : id) index[k] = ij;
@@ -331,20 +356,6 @@ struct GridMultigrid {
     return smooth(f, r, x, false);
   }
 };
-
-// λmax of M⁻¹A by power iteration from the ones vector (a lower bound, for
-// smoother weights); precondition(y) returns M⁻¹y.
-template <typename Precondition>
-double largest_eigenvalue(const SpMat& a, Precondition&& precondition, int iterations) {
-  VecX v = VecX::Ones(a.rows());
-  double lambda = 1;
-  for (int k = 0; k < iterations; ++k) {
-    const VecX t = precondition(VecX(a * v));
-    lambda = t.norm() / v.norm();
-    v = t / t.norm();
-  }
-  return lambda;
-}
 
 // The DDA displacement at p for a block with reference point c: T(p)·d.
 Eigen::Matrix<double, 2, 6> dda_t(const Vec2& p, const Vec2& c) {
@@ -556,16 +567,7 @@ struct MultilevelAux {
       }
       SpMat p(f.a.rows(), 3 * nc);
       p.setFromTriplets(t3.begin(), t3.end());
-      if (smooth) {
-        // P = (I − (4/3)ω D⁻¹A)·P_tent
-        SpMat dinv(f.a.rows(), f.a.rows());
-        std::vector<Eigen::Triplet<double>> td;
-        for (std::size_t k = 0; k < f.dinv.size(); ++k)
-          for (int r = 0; r < f.bs; ++r)
-            for (int c = 0; c < f.bs; ++c) td.emplace_back(f.bs * k + r, f.bs * k + c, f.dinv[k](r, c));
-        dinv.setFromTriplets(td.begin(), td.end());
-        p = SpMat(p - (4.0 / 3.0) * f.omega * SpMat(dinv * SpMat(f.a * p)));
-      }
+      if (smooth) p = smoothed(f.a, f.dinv, (4.0 / 3.0) * f.omega, p);  // (I − (4/3)ω D⁻¹A)·P_tent
       f.p = p;
       Level c;
       c.a = SpMat(p.transpose() * f.a * p);
@@ -732,7 +734,7 @@ int main(int argc, char** argv) {
       row(label, ins);
       // The auxiliary system solved by a two-level V-cycle of its own (smoothing
       // on the nodes needs products by ΠᵀAΠ: in the engine, fine products).
-      const double lambda_aux = largest_eigenvalue(aux.ac, [&](const VecX& y) { return two.jacobi(y); }, 30);
+      const double lambda_aux = largest_eigenvalue(aux.ac, two.jacobi, 30);
       auto aux_vcycle = [&](const VecX& r, VecX& z) {
         jacobi(r, z);
         z += aux.pi * two.vcycle(aux.ac, VecX(aux.pi.transpose() * r), 1.0 / lambda_aux);
@@ -743,7 +745,7 @@ int main(int argc, char** argv) {
     }
     for (double h : {1.0, 2.0, 4.0}) {
       const BilinearCoarse bc(aux, aux.ac, h);
-      const TwoLevelAux nodes(aux, 1e9);
+      const NodeJacobi nodes(aux);
       char label[96];
       auto direct = [&](const VecX& r, VecX& z) {
         jacobi(r, z);
@@ -754,12 +756,12 @@ int main(int argc, char** argv) {
       auto with_nodes = [&](const VecX& r, VecX& z) {
         jacobi(r, z);
         const VecX ra = aux.pi.transpose() * r;
-        z += aux.pi * VecX(nodes.jacobi(ra) + bc.solve(ra));
+        z += aux.pi * VecX(nodes(ra) + bc.solve(ra));
       };
       std::snprintf(label, sizeof label, "+ auxiliary, node Jacobi + bilinear %g m", h);
       row(label, pcg(a, b, with_nodes, tols));
       const VecX b_aux = aux.pi.transpose() * b;
-      const auto alone = pcg(aux.ac, b_aux, [&](const VecX& r, VecX& z) { z = nodes.jacobi(r) + bc.solve(r); }, tols);
+      const auto alone = pcg(aux.ac, b_aux, [&](const VecX& r, VecX& z) { z = nodes(r) + bc.solve(r); }, tols);
       row("  (auxiliary system alone, node Jacobi + bilinear)", alone);
     }
     // The continuous coarse space mapped to the blocks' centroids: solved
@@ -839,9 +841,9 @@ int main(int argc, char** argv) {
     const VecX b2 = w.last_rhs();
     {
       // How hard the auxiliary system is by itself: 2×2 block-Jacobi PCG on it.
-      const TwoLevelAux nodes_only(aux, 1.0);
+      const NodeJacobi nodes_only(aux);
       const VecX b_aux = aux.pi.transpose() * b;
-      const auto alone = pcg(aux.ac, b_aux, [&](const VecX& r, VecX& z) { z = nodes_only.jacobi(r); }, tols);
+      const auto alone = pcg(aux.ac, b_aux, [&](const VecX& r, VecX& z) { z = nodes_only(r); }, tols);
       row("(the auxiliary system alone, node block-Jacobi)", alone);
     }
     for (bool smooth : {false, true}) {
