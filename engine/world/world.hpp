@@ -64,13 +64,14 @@ struct Controls {
   // open-close solves (the normal force of a solve good to
   // cg_open_close_tolerance), and with gg = 0 a displacement error is not
   // carried on as a velocity, so solving the last pass past 1e-6 changes the
-  // answer less than the path the contact states take does: wall(20) over
-  // 300 steps, 1e-6 and 1e-10 agree to 1.7e-11 m where 1e-12 differs from
-  // both by 7.5e-8 m (of 8.4e-4 m settled), and wall(40) takes 294 against
-  // 486 CG iterations per step (40 against 64 ms). Where contacts slide and
-  // steps are cut (wall(10), gravity tilted 22°, 200 steps), the path itself
-  // is that sensitive: 1e-14, 1e-9 and 1e-6 end 8.3e-6, 8.2e-6 and 1.4e-6 m
-  // from 1e-12 (of 2.7e-4 m). Dynamic analysis (gg > 0) keeps cg_tolerance:
+  // answer less than the loose solves do: wall(20) over 300 steps, 1e-6 and
+  // 1e-10 agree to 1.7e-11 m and both end 7.5e-8 m (of 8.4e-4 m settled)
+  // from the scheme's limit (every solve at 1e-12 or tighter), and wall(40)
+  // takes 294 against 486 CG iterations per step (40 against 64 ms). Where
+  // contacts slide and steps are cut (wall(10), gravity tilted 22°, 200
+  // steps), 1e-10, 1e-8 and 1e-6 end 4.7e-6, 1.1e-6 and 1.2e-6 m from the
+  // limit (of 3.2e-4 m): there the loose solves decide which contacts change
+  // state in which step. Dynamic analysis (gg > 0) keeps cg_tolerance:
   // a wall(6) with gg = 1 moved 3e-5 of its settlement at 1e-6, against
   // 2e-6 at 1e-10. = cg_tolerance: off.
   double cg_static_tolerance = 1e-6;
