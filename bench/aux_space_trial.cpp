@@ -23,12 +23,15 @@
 // or mapped straight to each block's centroid value and gradient (no nodes),
 // solved exactly or, on the 0.5 m grid, by geometric V-cycles (Jacobi or
 // Gauss-Seidel smoothing, bilinear or smoothed prolongators, with and
-// without a penalty on the grid cells' hourglass modes).
+// without a penalty on the grid cells' hourglass modes); patch Schwarz (the
+// blocks round each vertex, or each block with its neighbours), with and
+// without those coarse spaces; and Eigen's incomplete Cholesky of A.
 //
 // Run: build/bench/aux_space_trial [N ...]   (walls wall(N), default 10 20 40)
 #include <Eigen/Cholesky>
 #include <Eigen/LU>
 #include <Eigen/QR>
+#include <Eigen/IterativeLinearSolvers>
 #include <Eigen/SparseCholesky>
 #include <chrono>
 #include <cmath>
@@ -832,6 +835,16 @@ int main(int argc, char** argv) {
         std::snprintf(label, sizeof label, "  + bilinear %g m at centroids", h);
         row(label, pcg(a, b, [&](const VecX& r, VecX& z) { z = patches.apply(r) + cc.solve(r); }, tols));
       }
+    }
+    {
+      // Incomplete Cholesky of A (Eigen's: Lin & Moré, as many entries a
+      // column as A has, with a diagonal shift where needed): how far an
+      // incomplete factorisation gets, apart from the cost of its sequential
+      // triangular solves. Natural ordering keeps the blocks' order.
+      Eigen::IncompleteCholesky<double, Eigen::Lower, Eigen::NaturalOrdering<int>> ic;
+      ic.compute(a);
+      if (ic.info() == Eigen::Success) row("incomplete Cholesky", pcg(a, b, [&](const VecX& r, VecX& z) { z = ic.solve(r); }, tols));
+      else std::printf("  incomplete Cholesky failed\n");
     }
     // The same auxiliary factorisation, 10 steps later (a stale operator is
     // still a symmetric positive definite preconditioner).
