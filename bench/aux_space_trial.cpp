@@ -29,9 +29,9 @@
 //
 // Run: build/bench/aux_space_trial [N ...]   (walls wall(N), default 10 20 40)
 #include <Eigen/Cholesky>
+#include <Eigen/IterativeLinearSolvers>
 #include <Eigen/LU>
 #include <Eigen/QR>
-#include <Eigen/IterativeLinearSolvers>
 #include <Eigen/SparseCholesky>
 #include <chrono>
 #include <cmath>
@@ -62,7 +62,8 @@ struct NodeJacobi {
   std::vector<Eigen::Matrix2d> dinv;
   explicit NodeJacobi(const Aux& aux) : dinv(aux.nodes) {
     double largest = 0;
-    for (int k = 0; k < aux.nodes; ++k) largest = std::max(largest, Eigen::Matrix2d(aux.ac.block(2 * k, 2 * k, 2, 2)).norm());
+    for (int k = 0; k < aux.nodes; ++k)
+      largest = std::max(largest, Eigen::Matrix2d(aux.ac.block(2 * k, 2 * k, 2, 2)).norm());
     int weak = 0;
     for (int k = 0; k < aux.nodes; ++k) {
       const Eigen::Matrix2d d = aux.ac.block(2 * k, 2 * k, 2, 2);
@@ -244,8 +245,11 @@ struct CentroidCoarse {
     for (int k = 0; k < 10; ++k) y = chol.solve(y);
     const auto t2 = Clock::now();
     auto ms = [](auto from, auto to) { return std::chrono::duration<double, std::milli>(to - from).count(); };
-    std::printf("  bilinear %g m at centroids: grid system nnz %ld, factor nnz %ld; factorisation %.1f ms, one solve %.2f ms (1 thread)\n", h,
-                static_cast<long>(ac.nonZeros()), static_cast<long>(chol.matrixL().nestedExpression().nonZeros()), ms(t0, t1), ms(t1, t2) / 10);
+    std::printf(
+        "  bilinear %g m at centroids: grid system nnz %ld, factor nnz %ld; factorisation %.1f ms, one solve %.2f ms "
+        "(1 thread)\n",
+        h, static_cast<long>(ac.nonZeros()), static_cast<long>(chol.matrixL().nestedExpression().nonZeros()),
+        ms(t0, t1), ms(t1, t2) / 10);
     if (chol.info() != Eigen::Success) std::printf("  centroid coarse factorisation failed (h %g)\n", h);
   }
   VecX solve(const VecX& r) const { return z * chol.solve(VecX(z.transpose() * r)); }
@@ -265,7 +269,10 @@ struct CentroidCoarse {
       bool all = true;
       for (int m = 0; m < 3; ++m) {
         auto it = id.find(other[m]);
-        if (it == id.end()) { all = false; break; }
+        if (it == id.end()) {
+          all = false;
+          break;
+        }
         c[m + 1] = it->second;
       }
       if (!all) continue;
@@ -300,22 +307,31 @@ struct GridMultigrid {
     return z;
   }
   // prolongator_smoothing: damped Jacobi steps applied to each bilinear P.
-  GridMultigrid(const SpMat& a0, std::vector<std::pair<int, int>> index, int sweeps_, bool gs, int prolongator_smoothing)
+  GridMultigrid(const SpMat& a0, std::vector<std::pair<int, int>> index, int sweeps_, bool gs,
+                int prolongator_smoothing)
       : sweeps(sweeps_), gauss_seidel(gs) {
     levels.push_back({a0, {}, {}, 1});
     while (levels.back().a.rows() > 600) {
       Level& f = levels.back();
       f.dinv.resize(f.a.rows() / 2);
-      for (std::size_t k = 0; k < f.dinv.size(); ++k) f.dinv[k] = Eigen::Matrix2d(f.a.block(2 * k, 2 * k, 2, 2)).inverse();
-      f.omega = (4.0 / 3.0) / largest_eigenvalue(f.a, [&](const VecX& y) { return jacobi(f, y); }, 20);
+      for (std::size_t k = 0; k < f.dinv.size(); ++k)
+        f.dinv[k] = Eigen::Matrix2d(f.a.block(2 * k, 2 * k, 2, 2)).inverse();
+      f.omega = (4.0 / 3.0) / largest_eigenvalue(
+                                  f.a, [&](const VecX& y) { return jacobi(f, y); }, 20);
       std::map<std::pair<int, int>, int> id;
       std::vector<Eigen::Triplet<double>> t;
       auto floor2 = [](int i) { return i >= 0 ? i / 2 : -((1 - i) / 2); };
       for (std::size_t k = 0; k < index.size(); ++k) {
         const auto [i, j] = index[k];
         std::vector<std::pair<int, double>> xs, ys;
-        if (i % 2 == 0) xs = {{floor2(i), 1.0}}; else xs = {{floor2(i), 0.5}, {floor2(i) + 1, 0.5}};
-        if (j % 2 == 0) ys = {{floor2(j), 1.0}}; else ys = {{floor2(j), 0.5}, {floor2(j) + 1, 0.5}};
+        if (i % 2 == 0)
+          xs = {{floor2(i), 1.0}};
+        else
+          xs = {{floor2(i), 0.5}, {floor2(i) + 1, 0.5}};
+        if (j % 2 == 0)
+          ys = {{floor2(j), 1.0}};
+        else
+          ys = {{floor2(j), 0.5}, {floor2(j) + 1, 0.5}};
         for (auto [ci, wx] : xs)
           for (auto [cj, wy] : ys) {
             const int c = id.emplace(std::make_pair(ci, cj), static_cast<int>(id.size())).first->second;
@@ -343,8 +359,10 @@ struct GridMultigrid {
     for (int s = 0; s < sweeps; ++s) {
       const VecX res = r - f.a * x;
       if (gauss_seidel) {
-        if (forward) x += f.a.triangularView<Eigen::Lower>().solve(res);
-        else x += f.a.triangularView<Eigen::Upper>().solve(res);
+        if (forward)
+          x += f.a.triangularView<Eigen::Lower>().solve(res);
+        else
+          x += f.a.triangularView<Eigen::Upper>().solve(res);
       } else {
         x += f.omega * jacobi(f, res);
       }
@@ -385,7 +403,8 @@ void build_aux(World& w, const SpMat& a, Aux& aux) {
   const double cell = 1.0;
   std::map<std::pair<int, int>, std::vector<int>> grid;
   for (int k = 0; k < aux.nodes; ++k)
-    grid[{static_cast<int>(std::floor(node[k].x() / cell)), static_cast<int>(std::floor(node[k].y() / cell))}].push_back(k);
+    grid[{static_cast<int>(std::floor(node[k].x() / cell)), static_cast<int>(std::floor(node[k].y() / cell))}]
+        .push_back(k);
   std::vector<Eigen::Triplet<double>> trip;
   for (int b = 0; b < n; ++b) {
     const auto v = w.block_initial_vertices(b);
@@ -393,8 +412,10 @@ void build_aux(World& w, const SpMat& a, Aux& aux) {
     std::vector<int> on;
     for (std::size_t e = 0; e < v.size(); ++e) {
       const Vec2 p = v[e], q = v[(e + 1) % v.size()];
-      const int x0 = static_cast<int>(std::floor(std::min(p.x(), q.x()) / cell)) - 1, x1 = static_cast<int>(std::floor(std::max(p.x(), q.x()) / cell)) + 1;
-      const int y0 = static_cast<int>(std::floor(std::min(p.y(), q.y()) / cell)) - 1, y1 = static_cast<int>(std::floor(std::max(p.y(), q.y()) / cell)) + 1;
+      const int x0 = static_cast<int>(std::floor(std::min(p.x(), q.x()) / cell)) - 1,
+                x1 = static_cast<int>(std::floor(std::max(p.x(), q.x()) / cell)) + 1;
+      const int y0 = static_cast<int>(std::floor(std::min(p.y(), q.y()) / cell)) - 1,
+                y1 = static_cast<int>(std::floor(std::max(p.y(), q.y()) / cell)) + 1;
       for (int gx = x0; gx <= x1; ++gx)
         for (int gy = y0; gy <= y1; ++gy) {
           auto it = grid.find({gx, gy});
@@ -431,7 +452,12 @@ void build_aux(World& w, const SpMat& a, Aux& aux) {
       const Vec2 c = w.block_centroid(b);
       // Gauss 4x4 over the bounding box (the wall's blocks are rectangles).
       double x0 = 1e300, x1 = -1e300, y0 = 1e300, y1 = -1e300;
-      for (const Vec2& p : v) { x0 = std::min(x0, p.x()); x1 = std::max(x1, p.x()); y0 = std::min(y0, p.y()); y1 = std::max(y1, p.y()); }
+      for (const Vec2& p : v) {
+        x0 = std::min(x0, p.x());
+        x1 = std::max(x1, p.x());
+        y0 = std::min(y0, p.y());
+        y1 = std::max(y1, p.y());
+      }
       const double gp[4] = {-0.8611363115940526, -0.3399810435848563, 0.3399810435848563, 0.8611363115940526};
       const double gw[4] = {0.3478548451374538, 0.6521451548625461, 0.6521451548625461, 0.3478548451374538};
       Mat6 k = Mat6::Zero();
@@ -470,9 +496,10 @@ void build_aux(World& w, const SpMat& a, Aux& aux) {
   for (int k = 0; k < 10; ++k) y = aux.chol.solve(r);
   auto t4 = Clock::now();
   auto ms = [](auto a, auto b) { return std::chrono::duration<double, std::milli>(b - a).count(); };
-  std::printf("  Galerkin auxiliary operator: nnz %ld; product %.1f ms, ordering %.1f ms, factorisation %.1f ms, one solve %.2f ms (1 thread)\n",
-              static_cast<long>(ac.nonZeros()), ms(t0, t1), ms(t1, t2),
-              ms(t2, t3), ms(t3, t4) / 10);
+  std::printf(
+      "  Galerkin auxiliary operator: nnz %ld; product %.1f ms, ordering %.1f ms, factorisation %.1f ms, one solve "
+      "%.2f ms (1 thread)\n",
+      static_cast<long>(ac.nonZeros()), ms(t0, t1), ms(t1, t2), ms(t2, t3), ms(t3, t4) / 10);
   if (aux.chol.info() != Eigen::Success) std::printf("  auxiliary factorisation failed\n");
 }
 
@@ -512,7 +539,7 @@ std::vector<int> pcg(const SpMat& a, const VecX& b, Pre&& pre, const std::vector
 // the coarsest level (under 600 unknowns).
 struct MultilevelAux {
   struct Level {
-    SpMat a, p;  // operator; prolongator from the next level (empty on the coarsest)
+    SpMat a, p;                         // operator; prolongator from the next level (empty on the coarsest)
     std::vector<Eigen::MatrixXd> dinv;  // block inverses (2×2 or 3×3)
     int bs = 2;
     double omega = 1;
@@ -543,13 +570,16 @@ struct MultilevelAux {
     while (levels.back().a.rows() > 600) {
       Level& f = levels.back();
       f.dinv = block_inverses(f.a, f.bs);
-      f.omega = 1.0 / largest_eigenvalue(f.a, [&](const VecX& y) { return jacobi(f, y); }, 20);
+      f.omega = 1.0 / largest_eigenvalue(
+                          f.a, [&](const VecX& y) { return jacobi(f, y); }, 20);
       // Cells of side h over this level's points.
       std::map<std::pair<int, int>, int> cell;
       std::vector<int> of(pos.size());
       for (std::size_t k = 0; k < pos.size(); ++k)
-        of[k] = cell.emplace(std::make_pair(static_cast<int>(std::floor(pos[k].x() / h)), static_cast<int>(std::floor(pos[k].y() / h))),
-                             static_cast<int>(cell.size())).first->second;
+        of[k] = cell.emplace(std::make_pair(static_cast<int>(std::floor(pos[k].x() / h)),
+                                            static_cast<int>(std::floor(pos[k].y() / h))),
+                             static_cast<int>(cell.size()))
+                    .first->second;
       const int nc = static_cast<int>(cell.size());
       std::vector<Vec2> centre(nc, Vec2::Zero());
       std::vector<int> count(nc, 0);
@@ -688,13 +718,18 @@ int main(int argc, char** argv) {
       z += coarse(r);
     };
     // λmax(D⁻¹A), for the smoother weight.
-    const double lambda = largest_eigenvalue(a, [&](const VecX& y) {
-      VecX z;
-      jacobi(y, z);
-      return z;
-    }, 30);
+    const double lambda = largest_eigenvalue(
+        a,
+        [&](const VecX& y) {
+          VecX z;
+          jacobi(y, z);
+          return z;
+        },
+        30);
     const double omega = 1.0 / lambda;
-    auto coarse_elastic = [&](const VecX& r) -> VecX { return aux.pi * aux.chol_elastic.solve(VecX(aux.pi.transpose() * r)); };
+    auto coarse_elastic = [&](const VecX& r) -> VecX {
+      return aux.pi * aux.chol_elastic.solve(VecX(aux.pi.transpose() * r));
+    };
     auto additive_elastic = [&](const VecX& r, VecX& z) {
       jacobi(r, z);
       z += coarse_elastic(r);
@@ -707,7 +742,8 @@ int main(int argc, char** argv) {
       jacobi(VecX(r - a * x2), s);
       z = x2 + omega * s;
     };
-    const auto bj = pcg(a, b, jacobi, tols), ad = pcg(a, b, additive, tols), mu = pcg(a, b, multiplicative, tols), ae = pcg(a, b, additive_elastic, tols);
+    const auto bj = pcg(a, b, jacobi, tols), ad = pcg(a, b, additive, tols), mu = pcg(a, b, multiplicative, tols),
+               ae = pcg(a, b, additive_elastic, tols);
     std::printf("  %d nodes (%d auxiliary unknowns), lambda_max(D^-1 A) %.2f\n", aux.nodes, 2 * aux.nodes, lambda);
     std::printf("  CG iterations to 1e-4 / 1e-6 / 1e-10 from zero:\n");
     row("block-Jacobi", bj);
@@ -764,7 +800,8 @@ int main(int argc, char** argv) {
       std::snprintf(label, sizeof label, "+ auxiliary, node Jacobi + bilinear %g m", h);
       row(label, pcg(a, b, with_nodes, tols));
       const VecX b_aux = aux.pi.transpose() * b;
-      const auto alone = pcg(aux.ac, b_aux, [&](const VecX& r, VecX& z) { z = nodes(r) + bc.solve(r); }, tols);
+      const auto alone = pcg(
+          aux.ac, b_aux, [&](const VecX& r, VecX& z) { z = nodes(r) + bc.solve(r); }, tols);
       row("  (auxiliary system alone, node Jacobi + bilinear)", alone);
     }
     // The continuous coarse space mapped to the blocks' centroids: solved
@@ -800,9 +837,14 @@ int main(int argc, char** argv) {
             z += cc.z * mg.vcycle(0, VecX(cc.z.transpose() * r));
           };
           std::snprintf(label, sizeof label, "  %s, %zu-level V-cycle, %s", what, mg.levels.size(),
-                        variant == 0 ? "Jacobi" : variant == 1 ? "Jacobi x2" : "sym. GS");
+                        variant == 0   ? "Jacobi"
+                        : variant == 1 ? "Jacobi x2"
+                                       : "sym. GS");
           row(label, pcg(a, b, vc, tols));
-          if (alone) row("    (the grid system alone under it)", pcg(g, b_grid, [&](const VecX& r, VecX& z) { z = mg.vcycle(0, r); }, tols));
+          if (alone)
+            row("    (the grid system alone under it)",
+                pcg(
+                    g, b_grid, [&](const VecX& r, VecX& z) { z = mg.vcycle(0, r); }, tols));
         }
       };
       vcycle_rows(cc.ac, "grid", true, 0);
@@ -828,12 +870,14 @@ int main(int argc, char** argv) {
       for (const auto& p : patches.blocks) largest = std::max(largest, p.size());
       std::printf("  %zu %s patches, up to %zu blocks\n", patches.blocks.size(), star ? "star" : "vertex", largest);
       row(star ? "star patches (additive Schwarz)" : "vertex patches (additive Schwarz)",
-          pcg(a, b, [&](const VecX& r, VecX& z) { z = patches.apply(r); }, tols));
+          pcg(
+              a, b, [&](const VecX& r, VecX& z) { z = patches.apply(r); }, tols));
       for (double h : {2.0, 4.0, 8.0}) {
         const CentroidCoarse cc(w, a, h);
         char label[96];
         std::snprintf(label, sizeof label, "  + bilinear %g m at centroids", h);
-        row(label, pcg(a, b, [&](const VecX& r, VecX& z) { z = patches.apply(r) + cc.solve(r); }, tols));
+        row(label, pcg(
+                       a, b, [&](const VecX& r, VecX& z) { z = patches.apply(r) + cc.solve(r); }, tols));
       }
     }
     {
@@ -843,8 +887,11 @@ int main(int argc, char** argv) {
       // triangular solves. Natural ordering keeps the blocks' order.
       Eigen::IncompleteCholesky<double, Eigen::Lower, Eigen::NaturalOrdering<int>> ic;
       ic.compute(a);
-      if (ic.info() == Eigen::Success) row("incomplete Cholesky", pcg(a, b, [&](const VecX& r, VecX& z) { z = ic.solve(r); }, tols));
-      else std::printf("  incomplete Cholesky failed\n");
+      if (ic.info() == Eigen::Success)
+        row("incomplete Cholesky", pcg(
+                                       a, b, [&](const VecX& r, VecX& z) { z = ic.solve(r); }, tols));
+      else
+        std::printf("  incomplete Cholesky failed\n");
     }
     // The same auxiliary factorisation, 10 steps later (a stale operator is
     // still a symmetric positive definite preconditioner).
@@ -856,7 +903,8 @@ int main(int argc, char** argv) {
       // How hard the auxiliary system is by itself: 2×2 block-Jacobi PCG on it.
       const NodeJacobi nodes_only(aux);
       const VecX b_aux = aux.pi.transpose() * b;
-      const auto alone = pcg(aux.ac, b_aux, [&](const VecX& r, VecX& z) { z = nodes_only(r); }, tols);
+      const auto alone = pcg(
+          aux.ac, b_aux, [&](const VecX& r, VecX& z) { z = nodes_only(r); }, tols);
       row("(the auxiliary system alone, node block-Jacobi)", alone);
     }
     for (bool smooth : {false, true}) {
@@ -867,7 +915,8 @@ int main(int argc, char** argv) {
       };
       const auto mlr = pcg(a, b, multilevel, tols);
       char label[96];
-      std::snprintf(label, sizeof label, "+ auxiliary by a %zu-level V-cycle%s", ml.levels.size(), smooth ? " (smoothed P)" : "");
+      std::snprintf(label, sizeof label, "+ auxiliary by a %zu-level V-cycle%s", ml.levels.size(),
+                    smooth ? " (smoothed P)" : "");
       row(label, mlr);
     }
     const BlockJacobi jacobi_later(later);

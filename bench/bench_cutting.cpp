@@ -100,8 +100,7 @@ std::vector<Case> cases() {
 
 int main(int argc, char** argv) {
   const int repeats = argc > 1 ? std::max(1, std::atoi(argv[1])) : 3;
-  std::printf("%-78s %8s %9s %9s %9s %7s %6s\n", "case", "blocks", "segments", "edges", "dangling", "slivers",
-              "ms");
+  std::printf("%-78s %8s %9s %9s %9s %7s %6s\n", "case", "blocks", "segments", "edges", "dangling", "slivers", "ms");
   for (const Case& c : cases()) {
     double best_ms = 1e300;
     BlockSet result;
@@ -111,9 +110,8 @@ int main(int argc, char** argv) {
       const auto t1 = std::chrono::steady_clock::now();
       best_ms = std::min(best_ms, std::chrono::duration<double, std::milli>(t1 - t0).count());
     }
-    std::printf("%-78s %8zu %9d %9d %9d %7d %6.1f\n", c.name.c_str(), result.blocks.size(),
-                result.stats.input_segments, result.stats.edges, result.stats.dangling_edges_removed,
-                result.stats.slivers_merged, best_ms);
+    std::printf("%-78s %8zu %9d %9d %9d %7d %6.1f\n", c.name.c_str(), result.blocks.size(), result.stats.input_segments,
+                result.stats.edges, result.stats.dangling_edges_removed, result.stats.slivers_merged, best_ms);
   }
   std::printf("(best of %d runs; one thread)\n", repeats);
   return 0;

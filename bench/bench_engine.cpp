@@ -37,9 +37,9 @@
 #include <string>
 #include <vector>
 
+#include "scenes.hpp"  // tests/engine: test::brick_wall, test::rectangle
 #include "solver/linear_solver.hpp"
 #include "solver/multigrid.hpp"
-#include "scenes.hpp"  // tests/engine: test::brick_wall, test::rectangle
 #include "world/world.hpp"
 
 using namespace dda;
@@ -152,9 +152,10 @@ Result run(const std::string& scene, int threads, const std::string& pre, int wa
 // have slid, opened and locked as they do), then its last system A·D = F
 // solved from zero to 1e-10 with block-Jacobi and with multigrid PCG.
 void solver_table(const std::vector<std::string>& scenes, int steps) {
-  std::printf("\nCold PCG solves of the last system after %d+ steps at the full dt (1 thread, tolerance 1e-10):\n", steps);
-  std::printf("%-10s %7s %9s %9s %9s %9s %9s %9s  %s\n", "scene", "blocks", "dt", "bj_iters", "bj_ms", "mg_iters", "mg_ms",
-              "mg_setup", "levels");
+  std::printf("\nCold PCG solves of the last system after %d+ steps at the full dt (1 thread, tolerance 1e-10):\n",
+              steps);
+  std::printf("%-10s %7s %9s %9s %9s %9s %9s %9s  %s\n", "scene", "blocks", "dt", "bj_iters", "bj_ms", "mg_iters",
+              "mg_ms", "mg_setup", "levels");
   for (const auto& scene : scenes) {
     if (scene.rfind("wall", 0) != 0) continue;
     World w;
@@ -193,14 +194,15 @@ void solver_table(const std::vector<std::string>& scenes, int steps) {
       if (l > 0) levels += ' ';
       levels += std::to_string(mgp->level_blocks(l));
     }
-    std::printf("%-10s %7d %9.2e %9d %9.2f %9d %9.2f %9.2f  %s\n", display_name(scene).c_str(), a.rows(), w.last_stats().dt, bj_it, bj_ms, mg_it,
-                mg_ms, mg_setup, levels.c_str());
+    std::printf("%-10s %7d %9.2e %9d %9.2f %9d %9.2f %9.2f  %s\n", display_name(scene).c_str(), a.rows(),
+                w.last_stats().dt, bj_it, bj_ms, mg_it, mg_ms, mg_setup, levels.c_str());
     std::fflush(stdout);
   }
 }
 
 // Runs in a child process so the peak RSS is the run's own.
-Result run_isolated(const std::string& scene, int threads, const std::string& pre, int warmup, int steps, double budget) {
+Result run_isolated(const std::string& scene, int threads, const std::string& pre, int warmup, int steps,
+                    double budget) {
   int fd[2];
   if (pipe(fd) != 0) return run(scene, threads, pre, warmup, steps, budget);
   const pid_t pid = fork();
@@ -325,16 +327,18 @@ int main(int argc, char** argv) {
         const double tot = r.total > 0 ? r.total : 1;
         const double other = r.total - r.detect - r.assemble - r.solve - r.check - r.update;
         const double bsps = r.ms_per_step > 0 ? r.blocks / (r.ms_per_step * 1e-3) : 0;
-        std::printf("%-10s %3d %-4s %7d %8d %5d %9.2f %11.0f %6.2f %8.1f %4d  %5.1f%% %5.1f%% %5.1f%% %5.1f%% %5.1f%% %5.1f%% %8.1f\n",
-                    name.c_str(), t, pre.c_str(), r.blocks, r.contacts, r.steps, r.ms_per_step, bsps, r.oc_per_step,
-                    r.cg_per_step, r.cuts, 100 * r.detect / tot, 100 * r.assemble / tot, 100 * r.solve / tot,
-                    100 * r.check / tot, 100 * r.update / tot, 100 * other / tot, r.peak_rss_mb);
+        std::printf(
+            "%-10s %3d %-4s %7d %8d %5d %9.2f %11.0f %6.2f %8.1f %4d  %5.1f%% %5.1f%% %5.1f%% %5.1f%% %5.1f%% %5.1f%% "
+            "%8.1f\n",
+            name.c_str(), t, pre.c_str(), r.blocks, r.contacts, r.steps, r.ms_per_step, bsps, r.oc_per_step,
+            r.cg_per_step, r.cuts, 100 * r.detect / tot, 100 * r.assemble / tot, 100 * r.solve / tot,
+            100 * r.check / tot, 100 * r.update / tot, 100 * other / tot, r.peak_rss_mb);
         std::fflush(stdout);
         if (out)
-          std::fprintf(out, "%s,%d,%s,%d,%d,%d,%.4f,%.1f,%.3f,%.2f,%d,%.2f,%.2f,%.2f,%.2f,%.2f,%.2f,%.2f\n", name.c_str(), t,
-                       pre.c_str(), r.blocks, r.contacts, r.steps, r.ms_per_step, bsps, r.oc_per_step, r.cg_per_step,
-                       r.cuts, 100 * r.detect / tot, 100 * r.assemble / tot, 100 * r.solve / tot, 100 * r.check / tot,
-                       100 * r.update / tot, 100 * other / tot, r.peak_rss_mb);
+          std::fprintf(out, "%s,%d,%s,%d,%d,%d,%.4f,%.1f,%.3f,%.2f,%d,%.2f,%.2f,%.2f,%.2f,%.2f,%.2f,%.2f\n",
+                       name.c_str(), t, pre.c_str(), r.blocks, r.contacts, r.steps, r.ms_per_step, bsps, r.oc_per_step,
+                       r.cg_per_step, r.cuts, 100 * r.detect / tot, 100 * r.assemble / tot, 100 * r.solve / tot,
+                       100 * r.check / tot, 100 * r.update / tot, 100 * other / tot, r.peak_rss_mb);
       }
   if (out) std::fclose(out);
   if (solver) solver_table(scenes, 3);

@@ -7,6 +7,7 @@
 // Prints, per configuration: ms per frame and frames per second for drawing
 // (OSMesa + overlay), PNG encoding, the file write, all of it on the caller's
 // thread, and the FrameWriter pipeline (caller cost per frame vs throughput).
+#include <unistd.h>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -17,7 +18,6 @@
 #include <string>
 #include <thread>
 #include <vector>
-#include <unistd.h>
 
 #include "raster/text.hpp"
 #include "render.hpp"
@@ -42,7 +42,8 @@ Scene wave_grid(int n, double t, bool contacts) {
     }
   if (contacts)
     for (std::size_t b = 0; b < s.block_count(); ++b)
-      for (int v = 0; v < 4; ++v) s.contacts.push_back({static_cast<dda::BlockId>(b), v, static_cast<dda::ContactState>((b + v) % 3)});
+      for (int v = 0; v < 4; ++v)
+        s.contacts.push_back({static_cast<dda::BlockId>(b), v, static_cast<dda::ContactState>((b + v) % 3)});
   s.time = t;
   s.step = static_cast<long>(t * 1e4);
   return s;
@@ -65,15 +66,16 @@ struct Timer {
 
 void row(const char* what, const Timer& t, int frames) {
   const double wall = seconds_since(t.wall), cpu = cpu_seconds() - t.cpu;
-  std::printf("  %-44s %8.2f ms/frame %7.1f frames/s   (CPU %7.2f ms/frame)\n", what, 1e3 * wall / frames, frames / wall,
-              1e3 * cpu / frames);
+  std::printf("  %-44s %8.2f ms/frame %7.1f frames/s   (CPU %7.2f ms/frame)\n", what, 1e3 * wall / frames,
+              frames / wall, 1e3 * cpu / frames);
 }
 
 }  // namespace
 
 int main(int argc, char** argv) {
   const int frames = argc > 1 ? std::max(1, std::atoi(argv[1])) : 40;
-  const std::filesystem::path dir = std::filesystem::temp_directory_path() / ("dda_bench_render_" + std::to_string(::getpid()));
+  const std::filesystem::path dir =
+      std::filesystem::temp_directory_path() / ("dda_bench_render_" + std::to_string(::getpid()));
   std::filesystem::create_directories(dir);
 
   const Scene base = wave_grid(100, 0, true);
@@ -90,7 +92,11 @@ int main(int argc, char** argv) {
   const Config configs[] = {
       {"sigma_xx, edges", [](FrameOptions&) {}},
       {"sigma_xx, edges + contacts + arrows", [](FrameOptions& o) { o.show_contacts = o.show_velocity = true; }},
-      {"von_mises, supersample 2", [](FrameOptions& o) { o.field = Field::VonMises; o.supersample = 2; }},
+      {"von_mises, supersample 2",
+       [](FrameOptions& o) {
+         o.field = Field::VonMises;
+         o.supersample = 2;
+       }},
   };
 
   Renderer renderer;
@@ -139,8 +145,9 @@ int main(int argc, char** argv) {
       }
       writer.flush();
       row("FrameWriter throughput (back to back)", t0, frames);
-      std::printf("  %-44s %8.2f ms/frame (waits on a full queue: %.2f ms/frame)\n", "  caller cost per frame, back to back",
-                  1e3 * caller / frames, 1e3 * writer.blocked_seconds() / frames);
+      std::printf("  %-44s %8.2f ms/frame (waits on a full queue: %.2f ms/frame)\n",
+                  "  caller cost per frame, back to back", 1e3 * caller / frames,
+                  1e3 * writer.blocked_seconds() / frames);
     }
     {
       // A simulation that captures every 60 ms of work: the caller's cost is the copy.

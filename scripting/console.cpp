@@ -133,8 +133,7 @@ void print_results(lua_State* L) {
     luaL_checkstack(L, LUA_MINSTACK, "too many results to print");
     lua_getglobal(L, "print");
     lua_insert(L, 1);
-    if (lua_pcall(L, n, 0, 0) != LUA_OK)
-      std::fprintf(stderr, "error calling 'print' (%s)\n", lua_tostring(L, -1));
+    if (lua_pcall(L, n, 0, 0) != LUA_OK) std::fprintf(stderr, "error calling 'print' (%s)\n", lua_tostring(L, -1));
   }
 }
 

@@ -34,9 +34,8 @@ void prefix_call_name(lua_State* L, char* message, std::size_t size) {
   if (std::strcmp(ar.namewhat, "method") == 0 && lua_type(L, 1) == LUA_TUSERDATA) {
     const std::string type = type_of(L, 1);
     static const std::pair<const char*, const char*> names[] = {
-        {"dda.Model", "m"},          {"dda.Block", "b"},         {"dda.BlockSet", "blocks"},
-        {"dda.EdgeSet", "edges"},    {"dda.Monitor", "monitor"}, {"dda.PointLoad", "load"},
-        {"dda.Pressure", "pressure"}, {"dda.Hole", "hole"}};
+        {"dda.Model", "m"},         {"dda.Block", "b"},        {"dda.BlockSet", "blocks"},   {"dda.EdgeSet", "edges"},
+        {"dda.Monitor", "monitor"}, {"dda.PointLoad", "load"}, {"dda.Pressure", "pressure"}, {"dda.Hole", "hole"}};
     for (const auto& [t, r] : names)
       if (type == t) receiver = r;
   }
@@ -142,7 +141,8 @@ double opt_number(lua_State* L, int idx, double def, std::string_view call, std:
 
 long check_integer(lua_State* L, int idx, std::string_view call, std::string_view what) {
   const double v = check_number(L, idx, call, what);
-  if (v != std::floor(v) || std::fabs(v) > 9e15) fail(call, ": ", what, " must be a whole number, got ", number_text(v));
+  if (v != std::floor(v) || std::fabs(v) > 9e15)
+    fail(call, ": ", what, " must be a whole number, got ", number_text(v));
   return static_cast<long>(v);
 }
 
@@ -235,7 +235,8 @@ int edit_distance(std::string_view a, std::string_view b) {
   for (std::size_t i = 1; i <= n; ++i)
     for (std::size_t j = 1; j <= m; ++j) {
       d[i][j] = std::min({d[i - 1][j] + 1, d[i][j - 1] + 1, d[i - 1][j - 1] + (a[i - 1] == b[j - 1] ? 0 : 1)});
-      if (i > 1 && j > 1 && a[i - 1] == b[j - 2] && a[i - 2] == b[j - 1]) d[i][j] = std::min(d[i][j], d[i - 2][j - 2] + 1);
+      if (i > 1 && j > 1 && a[i - 1] == b[j - 2] && a[i - 2] == b[j - 1])
+        d[i][j] = std::min(d[i][j], d[i - 2][j - 2] + 1);
     }
   return d[n][m];
 }
@@ -466,8 +467,8 @@ TimeInput TimeInput::parse(lua_State* L, int idx, std::string_view call, std::st
         }
         lua_pop(L, 1);
         if (!h.t_.empty() && p.x() < h.t_.back())
-          fail(call, ": ", what, " times must not decrease (entry ", k, " has t = ", p.x(), " after t = ",
-               h.t_.back(), ")");
+          fail(call, ": ", what, " times must not decrease (entry ", k, " has t = ", p.x(), " after t = ", h.t_.back(),
+               ")");
         h.t_.push_back(p.x());
         h.v_.push_back(p.y());
       }
@@ -546,8 +547,8 @@ Vec2 VecTimeInput::at(lua_State* L, double t) const {
     if (lua_type(L, i) != LUA_TNUMBER || !std::isfinite(lua_tonumber(L, i))) {
       const std::string got = lua_type(L, i) == LUA_TNUMBER ? msg(lua_tonumber(L, i)) : type_of(L, i);
       lua_pop(L, 2);
-      fail(what_, ": the ", where_, " returned ", got, " as its ", k == 0 ? "first" : "second",
-           " value at t = ", t, " (expected two finite numbers x, y)");
+      fail(what_, ": the ", where_, " returned ", got, " as its ", k == 0 ? "first" : "second", " value at t = ", t,
+           " (expected two finite numbers x, y)");
     }
     v[k] = lua_tonumber(L, i);
   }

@@ -100,7 +100,8 @@ int main(int argc, char** argv) {
       const char* v = value("--frames");
       char* end = nullptr;
       const long n = v ? std::strtol(v, &end, 10) : -1;
-      if (!v || *end != '\0' || n < 1) return usage_error("--frames needs a whole number of steps >= 1, got '%s'", v ? v : "");
+      if (!v || *end != '\0' || n < 1)
+        return usage_error("--frames needs a whole number of steps >= 1, got '%s'", v ? v : "");
 #ifndef DDA_HAVE_RENDER
       return usage_error("%s: this dda was built without the renderer", "--frames");
 #endif

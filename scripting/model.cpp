@@ -216,8 +216,8 @@ Vec2 ScriptModel::point_load_value(int id, lua_State* L) const {
 int ScriptModel::add_target(const std::vector<std::pair<BlockId, Vec2>>& points, const std::vector<Vec2>& directions,
                             ScriptTarget target, lua_State* L) {
   for (std::size_t i = 0; i < points.size(); ++i)
-    target.world_ids.push_back(world_->add_displacement_target(points[i].first, points[i].second,
-                                                               directions.empty() ? Vec2(Vec2::Zero()) : directions[i]));
+    target.world_ids.push_back(world_->add_displacement_target(
+        points[i].first, points[i].second, directions.empty() ? Vec2(Vec2::Zero()) : directions[i]));
   hand_over(target, L);
   targets_.push_back(std::move(target));
   return static_cast<int>(targets_.size()) - 1;
@@ -299,15 +299,24 @@ double ScriptModel::field_value(const Monitor& m, Field f) const {
   const World& w = *world_;
   const BlockId b = w.tracked_block(m.tracked);
   switch (f) {
-    case Field::Sxx: return w.block_stress(b)[0];
-    case Field::Syy: return w.block_stress(b)[1];
-    case Field::Txy: return w.block_stress(b)[2];
-    case Field::Vx: return w.velocity_at(b, w.tracked_position(m.tracked)).x();
-    case Field::Vy: return w.velocity_at(b, w.tracked_position(m.tracked)).y();
-    case Field::Ux: return w.tracked_displacement(m.tracked).x();
-    case Field::Uy: return w.tracked_displacement(m.tracked).y();
-    case Field::X: return w.tracked_position(m.tracked).x();
-    case Field::Y: return w.tracked_position(m.tracked).y();
+    case Field::Sxx:
+      return w.block_stress(b)[0];
+    case Field::Syy:
+      return w.block_stress(b)[1];
+    case Field::Txy:
+      return w.block_stress(b)[2];
+    case Field::Vx:
+      return w.velocity_at(b, w.tracked_position(m.tracked)).x();
+    case Field::Vy:
+      return w.velocity_at(b, w.tracked_position(m.tracked)).y();
+    case Field::Ux:
+      return w.tracked_displacement(m.tracked).x();
+    case Field::Uy:
+      return w.tracked_displacement(m.tracked).y();
+    case Field::X:
+      return w.tracked_position(m.tracked).x();
+    case Field::Y:
+      return w.tracked_position(m.tracked).y();
   }
   return 0;
 }

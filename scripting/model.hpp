@@ -152,8 +152,7 @@ class ScriptModel {
   const geometry::CutStats& cut_stats() const { return cut_stats_; }
 
   // An explicit block; edge_joints as World::add_block.
-  BlockId add_block(std::vector<Vec2> vertices, int rock, std::vector<int> edge_joints,
-                    std::vector<EdgeTag> tags = {});
+  BlockId add_block(std::vector<Vec2> vertices, int rock, std::vector<int> edge_joints, std::vector<EdgeTag> tags = {});
   const EdgeTag& edge_tag(EdgeRef e) const { return tags_[e.block][e.edge]; }
 
   // ---- queries on the current geometry ------------------------------------

@@ -33,13 +33,17 @@ int dda_param(lua_State* L) {
   const std::string& v = it->second;
   const int def_type = lua_type(L, 2);
   if (def_type == LUA_TBOOLEAN) {
-    if (v == "true" || v == "1" || v == "yes") lua_pushboolean(L, 1);
-    else if (v == "false" || v == "0" || v == "no") lua_pushboolean(L, 0);
-    else fail("dda.param: --set ", name, "=", v, " must be true or false (the default is a boolean)");
+    if (v == "true" || v == "1" || v == "yes")
+      lua_pushboolean(L, 1);
+    else if (v == "false" || v == "0" || v == "no")
+      lua_pushboolean(L, 0);
+    else
+      fail("dda.param: --set ", name, "=", v, " must be true or false (the default is a boolean)");
     return 1;
   }
   if (!v.empty() && lua_stringtonumber(L, v.c_str()) != 0) return 1;
-  if (def_type == LUA_TNUMBER) fail("dda.param: --set ", name, "=", v, " is not a number (the default is ", lua_tonumber(L, 2), ")");
+  if (def_type == LUA_TNUMBER)
+    fail("dda.param: --set ", name, "=", v, " is not a number (the default is ", lua_tonumber(L, 2), ")");
   lua_pushlstring(L, v.data(), v.size());
   return 1;
 }

@@ -19,8 +19,8 @@ int m_add_block(lua_State* L) {
   const Options o(L, 2, "m:add_block", {"polygon", "rock", "joint", "joints"}, true);
   if ((o.array_size() > 0) == o.has("polygon"))
     fail("m:add_block: give the outline once, inline {{x, y}, ...} or as polygon = {...}");
-  std::vector<Vec2> pts = o.array_size() > 0 ? check_polygon(L, o.index(), "m:add_block", "the outline")
-                                             : o.polygon("polygon");
+  std::vector<Vec2> pts =
+      o.array_size() > 0 ? check_polygon(L, o.index(), "m:add_block", "the outline") : o.polygon("polygon");
   int rock = -1;
   if (o.has("rock")) {
     o.push("rock");
@@ -32,7 +32,8 @@ int m_add_block(lua_State* L) {
     rock = 0;
   }
   std::vector<int> joints;
-  if (o.has("joint") && o.has("joints")) fail("m:add_block: give either 'joint' (every edge) or 'joints' (one per edge)");
+  if (o.has("joint") && o.has("joints"))
+    fail("m:add_block: give either 'joint' (every edge) or 'joints' (one per edge)");
   if (o.has("joint")) {
     o.push("joint");
     joints.assign(pts.size(), check_joint(L, -1, &m, "m:add_block", "option 'joint'"));
@@ -40,7 +41,8 @@ int m_add_block(lua_State* L) {
   } else if (o.has("joints")) {
     o.push("joints");
     const int t = lua_gettop(L);
-    if (lua_type(L, t) != LUA_TTABLE) fail("m:add_block: option 'joints' must be a list of joint materials, one per edge");
+    if (lua_type(L, t) != LUA_TTABLE)
+      fail("m:add_block: option 'joints' must be a list of joint materials, one per edge");
     if (lua_rawlen(L, t) != pts.size())
       fail("m:add_block: option 'joints' has ", lua_rawlen(L, t), " entries for ", pts.size(), " edges");
     for (std::size_t k = 1; k <= pts.size(); ++k) {
@@ -362,7 +364,8 @@ int bs_fix(lua_State* L) {
 // blocks:filter(function(b) return ... end) → BlockSet
 int bs_filter(lua_State* L) {
   const SetSelf s = self_set(L, "blocks:filter");
-  if (lua_type(L, 2) != LUA_TFUNCTION) fail("blocks:filter: argument 1 must be a function(block) → boolean, got ", type_of(L, 2));
+  if (lua_type(L, 2) != LUA_TFUNCTION)
+    fail("blocks:filter: argument 1 must be a function(block) → boolean, got ", type_of(L, 2));
   push_model_of(L, 1);
   const int model_idx = lua_gettop(L);
   std::vector<BlockId> out;
@@ -386,12 +389,9 @@ int bs_tostring(lua_State* L) {
 }  // namespace
 
 void register_block(lua_State* L) {
-  static const luaL_Reg model_methods[] = {{"add_block", guarded<m_add_block>},
-                                           {"block", guarded<m_block>},
-                                           {"block_at", guarded<m_block_at>},
-                                           {"blocks", guarded<m_blocks>},
-                                           {"block_count", guarded<m_block_count>},
-                                           {nullptr, nullptr}};
+  static const luaL_Reg model_methods[] = {{"add_block", guarded<m_add_block>},     {"block", guarded<m_block>},
+                                           {"block_at", guarded<m_block_at>},       {"blocks", guarded<m_blocks>},
+                                           {"block_count", guarded<m_block_count>}, {nullptr, nullptr}};
   add_model_methods(L, model_methods);
 
   static const luaL_Reg block_methods[] = {{"id", guarded<b_id>},

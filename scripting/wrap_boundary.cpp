@@ -67,8 +67,9 @@ ScriptTarget read_target(const Options& o, bool directed) {
     t.mode = ScriptTarget::Mode::Velocity;
     o.push("velocity");
     if (lua_type(L, -1) == LUA_TFUNCTION)
-      fail(o.call(), ": option 'velocity' must be a number or a table of {t, v} pairs (the engine integrates it); "
-                     "give a function of t as displacement instead");
+      fail(o.call(),
+           ": option 'velocity' must be a number or a table of {t, v} pairs (the engine integrates it); "
+           "give a function of t as displacement instead");
     t.input = TimeInput::parse(L, -1, o.call(), "option 'velocity'");
     lua_pop(L, 1);
   } else {

@@ -11,10 +11,14 @@ namespace {
 
 const char* kind_name(EdgeKind k) {
   switch (k) {
-    case EdgeKind::Joint: return "joint";
-    case EdgeKind::Domain: return "domain";
-    case EdgeKind::Hole: return "hole";
-    case EdgeKind::Free: return "free";
+    case EdgeKind::Joint:
+      return "joint";
+    case EdgeKind::Domain:
+      return "domain";
+    case EdgeKind::Hole:
+      return "hole";
+    case EdgeKind::Free:
+      return "free";
   }
   return "?";
 }
@@ -172,8 +176,8 @@ int es_tostring(lua_State* L) {
 void register_edges(lua_State* L) {
   static const luaL_Reg model_methods[] = {{"edges", guarded<m_edges>}, {nullptr, nullptr}};
   add_model_methods(L, model_methods);
-  static const luaL_Reg methods[] = {{"count", guarded<es_count>},   {"length", guarded<es_length>},
-                                     {"blocks", guarded<es_blocks>}, {"fix", guarded<es_fix>},
+  static const luaL_Reg methods[] = {{"count", guarded<es_count>},       {"length", guarded<es_length>},
+                                     {"blocks", guarded<es_blocks>},     {"fix", guarded<es_fix>},
                                      {"pressure", guarded<es_pressure>}, {nullptr, nullptr}};
   static const luaL_Reg meta[] = {{"__len", es_len}, {"__tostring", es_tostring}, {nullptr, nullptr}};
   define_type(L, kEdgeSetType, methods, meta, guarded<es_index>);

@@ -18,9 +18,11 @@ std::vector<Vec2> read_shape(const Options& o, bool allow_circle) {
   lua_State* L = o.state();
   const bool has_inline = o.array_size() > 0;
   const int given = int(o.has("polygon")) + int(o.has("box")) + int(allow_circle && o.has("circle")) + int(has_inline);
-  const char* kinds = allow_circle ? "polygon = {{x, y}, ...}, box = {x1, y1, x2, y2}, circle = {x, y, r} or the points inline"
-                                   : "polygon = {{x, y}, ...}, box = {x1, y1, x2, y2} or the points inline";
-  if (given != 1) fail(o.call(), ": give the outline once, as ", kinds, given == 0 ? " (none given)" : " (several given)");
+  const char* kinds = allow_circle
+                          ? "polygon = {{x, y}, ...}, box = {x1, y1, x2, y2}, circle = {x, y, r} or the points inline"
+                          : "polygon = {{x, y}, ...}, box = {x1, y1, x2, y2} or the points inline";
+  if (given != 1)
+    fail(o.call(), ": give the outline once, as ", kinds, given == 0 ? " (none given)" : " (several given)");
   if (has_inline) return check_polygon(L, o.index(), o.call(), "the outline");
   if (o.has("polygon")) return o.polygon("polygon");
   if (o.has("box")) {
@@ -237,9 +239,12 @@ int hole_tostring(lua_State* L) {
 }  // namespace
 
 void register_geometry(lua_State* L) {
-  static const luaL_Reg model_methods[] = {{"domain", guarded<m_domain>},       {"hole", guarded<m_hole>},
-                                           {"region", guarded<m_region>},       {"joint_set", guarded<m_joint_set>},
-                                           {"joint_line", guarded<m_joint_line>}, {"generate", guarded<m_generate>},
+  static const luaL_Reg model_methods[] = {{"domain", guarded<m_domain>},
+                                           {"hole", guarded<m_hole>},
+                                           {"region", guarded<m_region>},
+                                           {"joint_set", guarded<m_joint_set>},
+                                           {"joint_line", guarded<m_joint_line>},
+                                           {"generate", guarded<m_generate>},
                                            {nullptr, nullptr}};
   add_model_methods(L, model_methods);
   static const luaL_Reg hole_methods[] = {

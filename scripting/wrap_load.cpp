@@ -16,8 +16,9 @@ ForceInput read_force(const Options& o) {
   const bool components = o.has("fx") || o.has("fy");
   const bool along = o.has("direction") || o.has("magnitude");
   if (int(o.has("force")) + int(components) + int(along) != 1)
-    fail(o.call(), ": give the force once: force = {fx, fy}, force = function(t) return fx, fy end, "
-                   "fx = ..., fy = ..., or direction = {dx, dy}, magnitude = ...");
+    fail(o.call(),
+         ": give the force once: force = {fx, fy}, force = function(t) return fx, fy end, "
+         "fx = ..., fy = ..., or direction = {dx, dy}, magnitude = ...");
   if (along) {
     const Vec2 d = o.point("direction");
     if (d.norm() == 0) fail(o.call(), ": option 'direction' must not be zero");
@@ -135,8 +136,8 @@ int pl_set(lua_State* L) {
     const Options o(L, 2, "load:set", {"force", "fx", "fy", "direction", "magnitude"});
     force = read_force(o);
   } else {
-    force.xy = VecTimeInput::constant(Vec2(check_number(L, 2, "load:set", "argument 1 (fx)"),
-                                           check_number(L, 3, "load:set", "argument 2 (fy)")));
+    force.xy = VecTimeInput::constant(
+        Vec2(check_number(L, 2, "load:set", "argument 1 (fx)"), check_number(L, 3, "load:set", "argument 2 (fy)")));
   }
   h->model->set_point_load(h->id, std::move(force), L);
   return 0;

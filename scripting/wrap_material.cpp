@@ -17,7 +17,8 @@ int m_rock(lua_State* L) {
   r.density = o.positive("density");
   r.youngs = o.positive("E");
   r.poisson = o.number("nu");
-  if (r.poisson < 0 || r.poisson >= 0.5) fail("m:rock: option 'nu' (Poisson's ratio) must lie in [0, 0.5), got ", r.poisson);
+  if (r.poisson < 0 || r.poisson >= 0.5)
+    fail("m:rock: option 'nu' (Poisson's ratio) must lie in [0, 0.5), got ", r.poisson);
   const int id = m.world().add_rock_material(r);
   push_rock(L, 1, id);
   return 1;
@@ -59,11 +60,16 @@ int rock_index(lua_State* L) {
   if (lua_type(L, 2) != LUA_TSTRING) return 0;
   const char* k = lua_tostring(L, 2);
   const RockMaterial& r = h->model->world().rock_material(id);
-  if (!std::strcmp(k, "density")) lua_pushnumber(L, r.density);
-  else if (!std::strcmp(k, "E")) lua_pushnumber(L, r.youngs);
-  else if (!std::strcmp(k, "nu")) lua_pushnumber(L, r.poisson);
-  else if (!std::strcmp(k, "id")) lua_pushinteger(L, id);
-  else return 0;
+  if (!std::strcmp(k, "density"))
+    lua_pushnumber(L, r.density);
+  else if (!std::strcmp(k, "E"))
+    lua_pushnumber(L, r.youngs);
+  else if (!std::strcmp(k, "nu"))
+    lua_pushnumber(L, r.poisson);
+  else if (!std::strcmp(k, "id"))
+    lua_pushinteger(L, id);
+  else
+    return 0;
   return 1;
 }
 
@@ -96,11 +102,16 @@ int joint_index(lua_State* L) {
   if (lua_type(L, 2) != LUA_TSTRING) return 0;
   const char* k = lua_tostring(L, 2);
   const JointMaterial& j = h->model->world().joint_material(id);
-  if (!std::strcmp(k, "friction")) lua_pushnumber(L, j.friction_deg);
-  else if (!std::strcmp(k, "cohesion")) lua_pushnumber(L, j.cohesion);
-  else if (!std::strcmp(k, "tension")) lua_pushnumber(L, j.tensile_strength);
-  else if (!std::strcmp(k, "id")) lua_pushinteger(L, id);
-  else return 0;
+  if (!std::strcmp(k, "friction"))
+    lua_pushnumber(L, j.friction_deg);
+  else if (!std::strcmp(k, "cohesion"))
+    lua_pushnumber(L, j.cohesion);
+  else if (!std::strcmp(k, "tension"))
+    lua_pushnumber(L, j.tensile_strength);
+  else if (!std::strcmp(k, "id"))
+    lua_pushinteger(L, id);
+  else
+    return 0;
   return 1;
 }
 
@@ -111,10 +122,14 @@ int joint_newindex(lua_State* L) {
   const std::string k = lua_type(L, 2) == LUA_TSTRING ? lua_tostring(L, 2) : "?";
   JointMaterial j = h->model->world().joint_material(id);
   const std::string call = msg("joint.", k);
-  if (k == "friction") j.friction_deg = check_number(L, 3, call, "the value");
-  else if (k == "cohesion") j.cohesion = check_number(L, 3, call, "the value");
-  else if (k == "tension") j.tensile_strength = check_number(L, 3, call, "the value");
-  else fail("joint: unknown field '", k, "' (fields: friction, cohesion, tension)");
+  if (k == "friction")
+    j.friction_deg = check_number(L, 3, call, "the value");
+  else if (k == "cohesion")
+    j.cohesion = check_number(L, 3, call, "the value");
+  else if (k == "tension")
+    j.tensile_strength = check_number(L, 3, call, "the value");
+  else
+    fail("joint: unknown field '", k, "' (fields: friction, cohesion, tension)");
   validate(j, id);
   h->model->world().joint_material(id) = j;
   return 0;
@@ -134,8 +149,9 @@ int rock_tostring(lua_State* L) {
     return 1;
   }
   const RockMaterial& r = h->model->world().rock_material(h->id);
-  lua_pushstring(L, msg("dda.RockMaterial ", h->id, " (density ", r.density, " kg/m3, E ", r.youngs, " Pa, nu ",
-                        r.poisson, ")").c_str());
+  lua_pushstring(
+      L, msg("dda.RockMaterial ", h->id, " (density ", r.density, " kg/m3, E ", r.youngs, " Pa, nu ", r.poisson, ")")
+             .c_str());
   return 1;
 }
 
@@ -147,7 +163,8 @@ int joint_tostring(lua_State* L) {
   }
   const JointMaterial& j = h->model->world().joint_material(h->id);
   lua_pushstring(L, msg("dda.JointMaterial ", h->id, " (friction ", j.friction_deg, " deg, cohesion ", j.cohesion,
-                        " Pa, tension ", j.tensile_strength, " Pa)").c_str());
+                        " Pa, tension ", j.tensile_strength, " Pa)")
+                        .c_str());
   return 1;
 }
 
@@ -160,10 +177,8 @@ void register_materials(lua_State* L) {
                                            {nullptr, nullptr}};
   add_model_methods(L, model_methods);
   static const luaL_Reg no_methods[] = {{nullptr, nullptr}};
-  static const luaL_Reg rock_meta[] = {{"__newindex", guarded<rock_newindex>},
-                                       {"__eq", material_eq},
-                                       {"__tostring", rock_tostring},
-                                       {nullptr, nullptr}};
+  static const luaL_Reg rock_meta[] = {
+      {"__newindex", guarded<rock_newindex>}, {"__eq", material_eq}, {"__tostring", rock_tostring}, {nullptr, nullptr}};
   define_type(L, kRockType, no_methods, rock_meta, guarded<rock_index>);
   static const luaL_Reg joint_meta[] = {{"__newindex", guarded<joint_newindex>},
                                         {"__eq", material_eq},

@@ -13,9 +13,10 @@ namespace dda::script {
 
 // ---- controls -----------------------------------------------------------------------------
 
-#define DDA_CONTROL_KEYS                                                                                 \
-  "plane", "g0", "g1", "g2", "gg", "shear_ratio", "open_close_limit", "contact_tolerance", "contact_range",             \
-      "fixed_point_factor", "gravity", "cut_factor", "max_step_cuts", "cg_tolerance", "cg_open_close_tolerance", "cg_static_tolerance", "predict_states", "patch_hops", "jacobi_refresh_tolerance", "preconditioner",   \
+#define DDA_CONTROL_KEYS                                                                                         \
+  "plane", "g0", "g1", "g2", "gg", "shear_ratio", "open_close_limit", "contact_tolerance", "contact_range",      \
+      "fixed_point_factor", "gravity", "cut_factor", "max_step_cuts", "cg_tolerance", "cg_open_close_tolerance", \
+      "cg_static_tolerance", "predict_states", "patch_hops", "jacobi_refresh_tolerance", "preconditioner",       \
       "cg_max_iterations", "threads"
 
 void parse_controls(const Options& o, Controls& c) {
@@ -48,7 +49,8 @@ void parse_controls(const Options& o, Controls& c) {
   if (o.has("gravity")) c.gravity = o.point("gravity");
   if (o.has("cut_factor")) {
     c.cut_factor = o.number("cut_factor");
-    if (!(c.cut_factor > 0 && c.cut_factor < 1)) fail(call, ": option 'cut_factor' must lie in (0, 1), got ", c.cut_factor);
+    if (!(c.cut_factor > 0 && c.cut_factor < 1))
+      fail(call, ": option 'cut_factor' must lie in (0, 1), got ", c.cut_factor);
   }
   if (o.has("max_step_cuts")) {
     const long n = o.integer("max_step_cuts", 0);
@@ -92,9 +94,7 @@ void parse_controls(const Options& o, Controls& c) {
   }
 }
 
-Options controls_options(lua_State* L, int idx, const char* call) {
-  return Options(L, idx, call, {DDA_CONTROL_KEYS});
-}
+Options controls_options(lua_State* L, int idx, const char* call) { return Options(L, idx, call, {DDA_CONTROL_KEYS}); }
 
 namespace {
 
@@ -158,10 +158,10 @@ int m_gravity(lua_State* L) {
 // ---- stepping -----------------------------------------------------------------------------------
 
 struct RunPlan {
-  double t_end = -1;    // run until time ≥ t_end (when ≥ 0)
-  long steps = -1;      // or this many steps (when ≥ 0)
-  long every = 1;       // call the callback every N steps
-  int callback = 0;     // stack index of the callback (0: none)
+  double t_end = -1;  // run until time ≥ t_end (when ≥ 0)
+  long steps = -1;    // or this many steps (when ≥ 0)
+  long every = 1;     // call the callback every N steps
+  int callback = 0;   // stack index of the callback (0: none)
 };
 
 std::string where_now(const World& w) { return msg("at step ", w.step_count(), ", t = ", w.time(), " s"); }
@@ -296,7 +296,8 @@ int m_totals(lua_State* L) {
 }
 int m_hash(lua_State* L) {
   char buf[32];
-  std::snprintf(buf, sizeof buf, "%016" PRIx64, static_cast<std::uint64_t>(check_model(L, 1, "m:hash").world().state_hash()));
+  std::snprintf(buf, sizeof buf, "%016" PRIx64,
+                static_cast<std::uint64_t>(check_model(L, 1, "m:hash").world().state_hash()));
   lua_pushstring(L, buf);
   return 1;
 }

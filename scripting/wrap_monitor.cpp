@@ -36,7 +36,8 @@ int m_monitor(lua_State* L) {
   } else {
     const auto found = m.block_at(mon->point);
     if (!found)
-      fail("m:monitor: no block at (", mon->point.x(), ", ", mon->point.y(), "); give block = ... or a point inside a block");
+      fail("m:monitor: no block at (", mon->point.x(), ", ", mon->point.y(),
+           "); give block = ... or a point inside a block");
     b = *found;
   }
   // fields
@@ -49,7 +50,8 @@ int m_monitor(lua_State* L) {
   if (nf == 0) fail("m:monitor: option 'fields' is empty; choose from ", field_list());
   for (int k = 1; k <= nf; ++k) {
     lua_rawgeti(L, ft, k);
-    if (lua_type(L, -1) != LUA_TSTRING) fail("m:monitor: option 'fields' entry ", k, " must be a field name, got ", type_of(L, -1));
+    if (lua_type(L, -1) != LUA_TSTRING)
+      fail("m:monitor: option 'fields' entry ", k, " must be a field name, got ", type_of(L, -1));
     const std::string name = lua_tostring(L, -1);
     lua_pop(L, 1);
     const auto f = parse_field(name);
@@ -64,7 +66,8 @@ int m_monitor(lua_State* L) {
   mon->every = static_cast<int>(every);
   mon->name = o.string("name", msg("monitor", session_.files.size() + 1));
   if (!valid_name(mon->name))
-    fail("m:monitor: option 'name' must be a plain file name (letters, digits, '_', '-', '.'), got \"", mon->name, "\"");
+    fail("m:monitor: option 'name' must be a plain file name (letters, digits, '_', '-', '.'), got \"", mon->name,
+         "\"");
 
   if (o.boolean("csv", true)) {
     std::error_code ec;
@@ -73,7 +76,8 @@ int m_monitor(lua_State* L) {
     mon->path = session_.out_dir / (mon->name + ".csv");
     const std::string key = std::filesystem::weakly_canonical(mon->path, ec).string();
     if (session_.files.count(key))
-      fail("m:monitor: another monitor already writes ", mon->path.string(), " in this run; give this one another name");
+      fail("m:monitor: another monitor already writes ", mon->path.string(),
+           " in this run; give this one another name");
     mon->file = std::fopen(mon->path.c_str(), "w");
     if (!mon->file) fail("m:monitor: cannot write ", mon->path.string(), ": ", std::strerror(errno));
     session_.files.insert(key);
@@ -272,13 +276,13 @@ void register_monitor(lua_State* L) {
   static const luaL_Reg model_methods[] = {
       {"monitor", guarded<m_monitor>}, {"monitors", guarded<m_monitors>}, {nullptr, nullptr}};
   add_model_methods(L, model_methods);
-  static const luaL_Reg methods[] = {{"name", guarded<mon_name>},     {"file", guarded<mon_file>},
-                                     {"fields", guarded<mon_fields>}, {"count", guarded<mon_count>},
-                                     {"times", guarded<mon_times>},   {"steps", guarded<mon_steps>},
-                                     {"series", guarded<mon_series>}, {"value", guarded<mon_value>},
-                                     {"last", guarded<mon_last>},     {"max", guarded<mon_max>},
-                                     {"min", guarded<mon_min>},       {"peak", guarded<mon_peak>},
-                                     {"row", guarded<mon_row>},       {"block", guarded<mon_block>},
+  static const luaL_Reg methods[] = {{"name", guarded<mon_name>},         {"file", guarded<mon_file>},
+                                     {"fields", guarded<mon_fields>},     {"count", guarded<mon_count>},
+                                     {"times", guarded<mon_times>},       {"steps", guarded<mon_steps>},
+                                     {"series", guarded<mon_series>},     {"value", guarded<mon_value>},
+                                     {"last", guarded<mon_last>},         {"max", guarded<mon_max>},
+                                     {"min", guarded<mon_min>},           {"peak", guarded<mon_peak>},
+                                     {"row", guarded<mon_row>},           {"block", guarded<mon_block>},
                                      {"position", guarded<mon_position>}, {nullptr, nullptr}};
   static const luaL_Reg meta[] = {{"__tostring", mon_tostring}, {nullptr, nullptr}};
   define_type(L, kMonitorType, methods, meta);

@@ -66,7 +66,8 @@ render::Rgb read_rgb(const Options& o, const char* key) {
   lua_State* L = o.state();
   o.push(key);
   const int t = lua_gettop(L);
-  if (lua_type(L, t) != LUA_TTABLE || lua_rawlen(L, t) != 3) fail(o.call(), ": option '", key, "' must be {r, g, b} (0-255)");
+  if (lua_type(L, t) != LUA_TTABLE || lua_rawlen(L, t) != 3)
+    fail(o.call(), ": option '", key, "' must be {r, g, b} (0-255)");
   int c[3];
   for (int k = 0; k < 3; ++k) {
     lua_rawgeti(L, t, k + 1);
@@ -80,9 +81,9 @@ render::Rgb read_rgb(const Options& o, const char* key) {
   return render::Rgb{static_cast<std::uint8_t>(c[0]), static_cast<std::uint8_t>(c[1]), static_cast<std::uint8_t>(c[2])};
 }
 
-#define DDA_FRAME_KEYS                                                                                          \
-  "field", "width", "height", "colormap", "range", "view", "magnify", "edges", "edge_width", "contacts",      \
-      "monitors", "velocity", "arrow_scale", "colorbar", "info", "title", "background", "supersample"
+#define DDA_FRAME_KEYS                                                                                               \
+  "field", "width", "height", "colormap", "range", "view", "magnify", "edges", "edge_width", "contacts", "monitors", \
+      "velocity", "arrow_scale", "colorbar", "info", "title", "background", "supersample"
 
 render::FrameOptions read_frame_options(const Options& o) {
   render::FrameOptions f;
@@ -161,7 +162,8 @@ int m_frames(lua_State* L) {
 render::FrameSequence& self_frames(lua_State* L, const char* call) {
   Handle* h = check_handle(L, 1, kFramesType, call, "self");
   RenderHook& hook = render_hook(*h->model);
-  if (h->id < 0 || h->id >= static_cast<int>(hook.sequences.size())) fail(call, ": attempt to use an invalid frame sequence");
+  if (h->id < 0 || h->id >= static_cast<int>(hook.sequences.size()))
+    fail(call, ": attempt to use an invalid frame sequence");
   return *hook.sequences[h->id];
 }
 
@@ -257,7 +259,8 @@ render::Series read_series(lua_State* L, int idx, const std::string& call) {
     o.push("y");
     s.y = read_numbers(L, -1, call, "option 'y'");
     lua_pop(L, 1);
-    if (s.x.size() != s.y.size()) fail(call, ": options 'x' and 'y' have ", s.x.size(), " and ", s.y.size(), " entries");
+    if (s.x.size() != s.y.size())
+      fail(call, ": options 'x' and 'y' have ", s.x.size(), " and ", s.y.size(), " entries");
   }
   if (o.has("color")) s.color = read_rgb(o, "color");
   s.width = o.positive("width", s.width);
@@ -306,7 +309,8 @@ int dda_plot(lua_State* L) {
   const Options o(L, 1, "dda.plot", {"series", DDA_PLOT_KEYS});
   render::PlotSpec p = time_plot();
   read_plot_options(o, p);
-  if (o.push("series") != LUA_TTABLE) fail("dda.plot: option 'series' must be a list of series {name =, x =, y =} or {monitor =, field =}");
+  if (o.push("series") != LUA_TTABLE)
+    fail("dda.plot: option 'series' must be a list of series {name =, x =, y =} or {monitor =, field =}");
   const int t = lua_gettop(L);
   for (lua_Unsigned i = 1; i <= lua_rawlen(L, t); ++i) {
     lua_rawgeti(L, t, static_cast<lua_Integer>(i));
@@ -355,11 +359,15 @@ int mon_plot(lua_State* L) {
 }  // namespace
 
 void register_render(lua_State* L) {
-  static const luaL_Reg model_methods[] = {{"frame", guarded<m_frame>}, {"frames", guarded<m_frames>}, {nullptr, nullptr}};
+  static const luaL_Reg model_methods[] = {
+      {"frame", guarded<m_frame>}, {"frames", guarded<m_frames>}, {nullptr, nullptr}};
   add_model_methods(L, model_methods);
-  static const luaL_Reg methods[] = {{"count", guarded<fr_count>},   {"capture", guarded<fr_capture>},
-                                     {"flush", guarded<fr_flush>},   {"path", guarded<fr_path>},
-                                     {"folder", guarded<fr_folder>}, {"active", guarded<fr_active>},
+  static const luaL_Reg methods[] = {{"count", guarded<fr_count>},
+                                     {"capture", guarded<fr_capture>},
+                                     {"flush", guarded<fr_flush>},
+                                     {"path", guarded<fr_path>},
+                                     {"folder", guarded<fr_folder>},
+                                     {"active", guarded<fr_active>},
                                      {nullptr, nullptr}};
   static const luaL_Reg meta[] = {{"__tostring", fr_tostring}, {nullptr, nullptr}};
   define_type(L, kFramesType, methods, meta);

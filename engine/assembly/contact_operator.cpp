@@ -85,19 +85,22 @@ void ContactOperator::add_coupling(Mat6& block, int i, int b) const {
 void ContactOperator::assemble_products() {
   const int n = rows();
   shape(products_, products_shaped_);
-  parallel_for_each(n, [&](std::size_t bi) {
-    const int b = static_cast<int>(bi);
-    products_.value(products_.diagonal(b)) = diagonal_[b].full();
-    for (int r = row_start_[b]; r < row_start_[b + 1]; ++r) {
-      const int other = other_block(row_contacts_[r], b);
-      if (other > b) products_.value(products_.find(b, other)).setZero();
-    }
-    for (int r = row_start_[b]; r < row_start_[b + 1]; ++r) {
-      const int i = row_contacts_[r];
-      const int other = other_block(i, b);
-      if (other > b) add_coupling(products_.value(products_.find(b, other)), i, b);
-    }
-  }, 16);
+  parallel_for_each(
+      n,
+      [&](std::size_t bi) {
+        const int b = static_cast<int>(bi);
+        products_.value(products_.diagonal(b)) = diagonal_[b].full();
+        for (int r = row_start_[b]; r < row_start_[b + 1]; ++r) {
+          const int other = other_block(row_contacts_[r], b);
+          if (other > b) products_.value(products_.find(b, other)).setZero();
+        }
+        for (int r = row_start_[b]; r < row_start_[b + 1]; ++r) {
+          const int i = row_contacts_[r];
+          const int other = other_block(i, b);
+          if (other > b) add_coupling(products_.value(products_.find(b, other)), i, b);
+        }
+      },
+      16);
 }
 
 void ContactOperator::multiply_rows(int begin, int end, const VecX& x, VecX& y) const {
@@ -126,15 +129,18 @@ const BlockSparseMatrix& ContactOperator::stored() const {
   if (stored_valid_) return stored_;
   const int n = rows();
   shape(stored_, stored_shaped_);
-  parallel_for_each(n, [&](std::size_t bi) {
-    const int b = static_cast<int>(bi);
-    for (int e = stored_.row_begin(b); e < stored_.row_end(b); ++e) stored_.value(e).setZero();
-    stored_.value(stored_.diagonal(b)) = diagonal_[b].full();
-    for (int r = row_start_[b]; r < row_start_[b + 1]; ++r) {
-      const int i = row_contacts_[r];
-      add_coupling(stored_.value(stored_.find(b, other_block(i, b))), i, b);
-    }
-  }, 16);
+  parallel_for_each(
+      n,
+      [&](std::size_t bi) {
+        const int b = static_cast<int>(bi);
+        for (int e = stored_.row_begin(b); e < stored_.row_end(b); ++e) stored_.value(e).setZero();
+        stored_.value(stored_.diagonal(b)) = diagonal_[b].full();
+        for (int r = row_start_[b]; r < row_start_[b + 1]; ++r) {
+          const int i = row_contacts_[r];
+          add_coupling(stored_.value(stored_.find(b, other_block(i, b))), i, b);
+        }
+      },
+      16);
   stored_valid_ = true;
   return stored_;
 }

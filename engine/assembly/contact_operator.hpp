@@ -83,7 +83,7 @@ class ContactOperator final : public LinearOperator {
   // 10^5 blocks waits for memory, and this is one of the arrays it reads.
   std::vector<Symmetric6> diagonal_;
   std::vector<std::uint64_t> diagonal_revision_;
-  std::uint64_t revision_ = 0;  // stamped on the diagonal blocks the current assembly rewrites
+  std::uint64_t revision_ = 0;               // stamped on the diagonal blocks the current assembly rewrites
   std::vector<std::pair<int, int>> blocks_;  // per contact: (vertex block, edge block)
   std::vector<Springs> springs_;
   std::vector<int> row_start_, row_contacts_;
@@ -93,7 +93,9 @@ class ContactOperator final : public LinearOperator {
   template <typename Matrix>
   void shape(Matrix& matrix, bool& shaped) const;
   void assemble_products();
-  int other_block(int contact, int b) const { return blocks_[contact].first == b ? blocks_[contact].second : blocks_[contact].first; }
+  int other_block(int contact, int b) const {
+    return blocks_[contact].first == b ? blocks_[contact].second : blocks_[contact].first;
+  }
   void add_coupling(Mat6& block, int contact, int b) const;
 
   SymmetricBlockMatrix products_;  // for store_products(true)

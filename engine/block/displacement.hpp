@@ -59,6 +59,8 @@ class BlockMotion {
   double cos_minus_1_, sin_;
 };
 
-inline Vec2 point_displacement(const Vec2& p, const Vec2& centroid, const Vec6& d) { return BlockMotion(d, centroid)(p); }
+inline Vec2 point_displacement(const Vec2& p, const Vec2& centroid, const Vec6& d) {
+  return BlockMotion(d, centroid)(p);
+}
 
 }  // namespace dda

@@ -49,7 +49,9 @@ std::vector<std::pair<int, int>> find_candidate_pairs(const BlockPolygons& block
   }
   // Keep the grid no larger than ~4 cells per block (blocks scattered far apart).
   double cs = cell;
-  auto cells_along = [&](double size) { return std::max(1L, static_cast<long>(std::ceil((hi - lo).maxCoeff() / size))); };
+  auto cells_along = [&](double size) {
+    return std::max(1L, static_cast<long>(std::ceil((hi - lo).maxCoeff() / size)));
+  };
   while (static_cast<double>(cells_along(cs)) * cells_along(cs) > 4.0 * n + 1024) cs *= 2;
   const long nx = std::max(1L, static_cast<long>(std::ceil((hi.x() - lo.x()) / cs)) + 1);
   const long ny = std::max(1L, static_cast<long>(std::ceil((hi.y() - lo.y()) / cs)) + 1);

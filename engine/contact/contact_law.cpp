@@ -9,9 +9,12 @@ namespace dda {
 
 const char* to_string(ContactState s) {
   switch (s) {
-    case ContactState::Open: return "open";
-    case ContactState::Sliding: return "sliding";
-    case ContactState::Locked: return "locked";
+    case ContactState::Open:
+      return "open";
+    case ContactState::Sliding:
+      return "sliding";
+    case ContactState::Locked:
+      return "locked";
   }
   return "?";
 }
@@ -50,8 +53,8 @@ ContactKinematics contact_kinematics(const BlockPolygons& blocks, std::span<cons
   return k;
 }
 
-bool update_contact_state(Contact& c, ContactIterate& it, const JointMaterial& joint, double tan_phi, const ContactSprings& k, double dn,
-                          double ds, double ds_step) {
+bool update_contact_state(Contact& c, ContactIterate& it, const JointMaterial& joint, double tan_phi,
+                          const ContactSprings& k, double dn, double ds, double ds_step) {
   const ContactState old_state = c.state;
   const bool old_intact = c.intact;
   const std::int8_t old_sign = c.slide_sign;

@@ -39,8 +39,8 @@ struct ContactIterate {
 };
 
 struct ContactSprings {
-  double kn = 0;  // g0
-  double ks = 0;  // shear_ratio × g0
+  double kn = 0;         // g0
+  double ks = 0;         // shear_ratio × g0
   double tolerance = 0;  // open-close hysteresis (m)
 };
 
@@ -48,7 +48,7 @@ struct ContactSprings {
 // when the state (or the intact flag, or the sliding direction) changed.
 // `dn`, `ds` are the current penetration and shear; `ds_step` the shear
 // displacement within this step (sliding direction).
-bool update_contact_state(Contact& c, ContactIterate& it, const JointMaterial& joint, double tan_phi, const ContactSprings& k, double dn,
-                          double ds, double ds_step);
+bool update_contact_state(Contact& c, ContactIterate& it, const JointMaterial& joint, double tan_phi,
+                          const ContactSprings& k, double dn, double ds, double ds_step);
 
 }  // namespace dda

@@ -28,20 +28,23 @@ EdgeTable make_edge_table(const BlockPolygons& blocks) {
   EdgeTable table;
   table.edge.resize(blocks.vertices.size());
   table.convex.resize(blocks.vertices.size());
-  parallel_for_each(blocks.count(), [&](std::size_t bi) {
-    const int b = static_cast<int>(bi);
-    for (int k = 0; k < blocks.size(b); ++k) {
-      Edge& e = table.edge[blocks.start[b] + k];
-      e.p0 = blocks.vertex(b, k);
-      e.p1 = blocks.vertex(b, k + 1);
-      const Vec2 d = e.p1 - e.p0;
-      e.length = d.norm();
-      e.t = d / e.length;
-      e.n = Vec2(e.t.y(), -e.t.x());
-      const Vec2& v = blocks.vertex(b, k);
-      table.convex[blocks.start[b] + k] = cross(v - blocks.vertex(b, k - 1), blocks.vertex(b, k + 1) - v) > 0;
-    }
-  }, 64);
+  parallel_for_each(
+      blocks.count(),
+      [&](std::size_t bi) {
+        const int b = static_cast<int>(bi);
+        for (int k = 0; k < blocks.size(b); ++k) {
+          Edge& e = table.edge[blocks.start[b] + k];
+          e.p0 = blocks.vertex(b, k);
+          e.p1 = blocks.vertex(b, k + 1);
+          const Vec2 d = e.p1 - e.p0;
+          e.length = d.norm();
+          e.t = d / e.length;
+          e.n = Vec2(e.t.y(), -e.t.x());
+          const Vec2& v = blocks.vertex(b, k);
+          table.convex[blocks.start[b] + k] = cross(v - blocks.vertex(b, k - 1), blocks.vertex(b, k + 1) - v) > 0;
+        }
+      },
+      64);
   return table;
 }
 
@@ -106,8 +109,8 @@ struct PairDetector {
         const double share = 0.5 * (hi - lo);
         const double tie = 0.05 * shorter;
         const double scale = std::min(1.0, (hi - lo) / tie);
-        const int a_lo = wrap(a, ia + 1), a_hi = ia;            // a's vertices at the low / high end
-        const int b_lo = ib, b_hi = wrap(b, ib + 1);            // b's vertices at the low / high end
+        const int a_lo = wrap(a, ia + 1), a_hi = ia;  // a's vertices at the low / high end
+        const int b_lo = ib, b_hi = wrap(b, ib + 1);  // b's vertices at the low / high end
         // Low end of the overlap (near eb's start).
         if (s1 >= -tie) {
           add(a, a_lo, b, ib, share, scale);
@@ -170,7 +173,10 @@ struct PairDetector {
         const Vec2& vb = blocks.vertex(b, l);
         if ((va - vb).squaredNorm() > s.range * s.range) continue;
         if (aligned_corner(a, k, b, l)) continue;
-        struct Option { int vblock, vertex, eblock, edge; double score; };
+        struct Option {
+          int vblock, vertex, eblock, edge;
+          double score;
+        };
         Option best{-1, -1, -1, -1, -kWedgeSlack};
         // Edge ey of y ends at y's vertex vy; other_ey is y's other edge there.
         auto consider = [&](int x, int vx, int y, int ey, int other_ey) {

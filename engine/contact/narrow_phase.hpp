@@ -33,7 +33,7 @@
 namespace dda {
 
 struct NarrowPhaseSettings {
-  double range = 0;          // search distance (m)
+  double range = 0;            // search distance (m)
   double parallel_sin = 0.02;  // edges within asin(0.02) ≈ 1.1° of anti-parallel face each other
 };
 

@@ -9,17 +9,17 @@ namespace dda {
 enum class PlaneMode { Stress, Strain };
 
 struct RockMaterial {
-  double density = 2600;   // kg/m³
-  double youngs = 5e9;     // Pa
-  double poisson = 0.25;   // -
+  double density = 2600;  // kg/m³
+  double youngs = 5e9;    // Pa
+  double poisson = 0.25;  // -
 };
 
 // Mohr-Coulomb joint. Cohesion and tensile strength act only while a contact
 // is intact; once it fails in tension or shear they are lost for good.
 struct JointMaterial {
-  double friction_deg = 30;      // friction angle φ, degrees (radians inside the engine)
-  double cohesion = 0;           // Pa
-  double tensile_strength = 0;   // Pa
+  double friction_deg = 30;     // friction angle φ, degrees (radians inside the engine)
+  double cohesion = 0;          // Pa
+  double tensile_strength = 0;  // Pa
 };
 
 // Throw dda::Error naming the material ("rock material 2") and the parameter

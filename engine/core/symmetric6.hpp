@@ -52,7 +52,7 @@ class Symmetric6 {
 
  private:
   // Position of (i, j) in the upper triangle stored row by row.
-  static constexpr int kIndex[6][6] = {{0, 1, 2, 3, 4, 5},      {1, 6, 7, 8, 9, 10},     {2, 7, 11, 12, 13, 14},
+  static constexpr int kIndex[6][6] = {{0, 1, 2, 3, 4, 5},     {1, 6, 7, 8, 9, 10},    {2, 7, 11, 12, 13, 14},
                                        {3, 8, 12, 15, 16, 17}, {4, 9, 13, 16, 18, 19}, {5, 10, 14, 17, 19, 20}};
   std::array<double, 21> u_{};
 };

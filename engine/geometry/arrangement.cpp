@@ -91,8 +91,7 @@ class SegmentGrid {
     }
     // Counting sort of (cell, segment) entries into CSR arrays.
     start_.assign(static_cast<std::size_t>(nx_) * ny_ + 1, 0);
-    for (int s = 0; s < static_cast<int>(r.segs.size()); ++s)
-      for_each_cell(s, [&](std::size_t c) { ++start_[c + 1]; });
+    for (int s = 0; s < static_cast<int>(r.segs.size()); ++s) for_each_cell(s, [&](std::size_t c) { ++start_[c + 1]; });
     for (std::size_t c = 1; c < start_.size(); ++c) start_[c] += start_[c - 1];
     if (start_.back() > kMaxGridEntries)
       throw Error(msg("block cutting: the joints are too many or too dense to cut (", r.segs.size(),
@@ -212,7 +211,9 @@ void intersect_pair(Round& r, int i, int j, double tol, std::vector<Split>& spli
   // from its nearer end, so it lies on that segment's line to rounding. A
   // horizontal or vertical segment gives its coordinate exactly, so joints on
   // a regular lattice meet at exact lattice points.
-  auto along = [](const Vec2& p, const Vec2& q, double t) { return t <= 0.5 ? Vec2(p + t * (q - p)) : Vec2(q + (1 - t) * (p - q)); };
+  auto along = [](const Vec2& p, const Vec2& q, double t) {
+    return t <= 0.5 ? Vec2(p + t * (q - p)) : Vec2(q + (1 - t) * (p - q));
+  };
   Vec2 x = si.rank >= sj.rank ? along(a, b, s3 / (s3 - s4)) : along(c, d, s1 / (s1 - s2));
   for (const auto& [p, q] : {std::pair{a, b}, std::pair{c, d}}) {
     if (p.x() == q.x()) x.x() = p.x();
@@ -266,7 +267,8 @@ class CellTable {
     int head = -1;  // -1: free
   };
   std::size_t hash(std::int64_t x, std::int64_t y) const {
-    std::uint64_t h = static_cast<std::uint64_t>(x) * 0x9E3779B97F4A7C15ull ^ static_cast<std::uint64_t>(y) * 0xC2B2AE3D27D4EB4Full;
+    std::uint64_t h =
+        static_cast<std::uint64_t>(x) * 0x9E3779B97F4A7C15ull ^ static_cast<std::uint64_t>(y) * 0xC2B2AE3D27D4EB4Full;
     return static_cast<std::size_t>(h ^ (h >> 29)) & mask_;
   }
   std::vector<Slot> slots_;
@@ -377,7 +379,7 @@ Arrangement build_arrangement(std::span<const ArrangementSegment> segments, doub
   }
 
   Arrangement out;
-  constexpr int kMaxRounds = 24;  // nearly coincident joints zip together over a few rounds
+  constexpr int kMaxRounds = 24;       // nearly coincident joints zip together over a few rounds
   std::vector<std::uint64_t> history;  // a hash of each round's vertices and edges
   for (int round = 1;; ++round) {
     const int old_points = static_cast<int>(r.pos.size());
@@ -423,9 +425,9 @@ Arrangement build_arrangement(std::span<const ArrangementSegment> segments, doub
       add(seg.pb);
       for (std::size_t k = split_start[s]; k < split_start[s + 1]; ++k) add(split_points[k]);
       std::sort(along.begin(), along.end());
-      along.erase(std::unique(along.begin(), along.end(),
-                              [](const auto& x, const auto& y) { return x.second == y.second; }),
-                  along.end());
+      along.erase(
+          std::unique(along.begin(), along.end(), [](const auto& x, const auto& y) { return x.second == y.second; }),
+          along.end());
       for (std::size_t k = 0; k + 1 < along.size(); ++k) {
         const int u = along[k].second, v = along[k + 1].second;
         if (u == v) continue;
@@ -458,7 +460,8 @@ Arrangement build_arrangement(std::span<const ArrangementSegment> segments, doub
     // neighbour and an edge swap back and forth between them for ever; any of
     // those states is as good as another at this tolerance.
     std::uint64_t state = 0x9E3779B97F4A7C15ull ^ reps.size();
-    for (const SubEdge& e : pieces) state = (state ^ (static_cast<std::uint64_t>(e.lo) << 32 | static_cast<std::uint32_t>(e.hi))) * 0x100000001B3ull;
+    for (const SubEdge& e : pieces)
+      state = (state ^ (static_cast<std::uint64_t>(e.lo) << 32 | static_cast<std::uint32_t>(e.hi))) * 0x100000001B3ull;
     if (same_vertices && std::find(history.begin(), history.end(), state) != history.end()) settled = true;
     history.push_back(state);
 

@@ -45,7 +45,8 @@ double segment_distance(const Vec2& a, const Vec2& b, const Vec2& c, const Vec2&
 
 double distance_to_outline(const std::vector<Vec2>& poly, const Vec2& p) {
   double best = std::numeric_limits<double>::infinity();
-  for (std::size_t k = 0; k < poly.size(); ++k) best = std::min(best, distance_to_segment(p, poly[k], poly[(k + 1) % poly.size()]));
+  for (std::size_t k = 0; k < poly.size(); ++k)
+    best = std::min(best, distance_to_segment(p, poly[k], poly[(k + 1) % poly.size()]));
   return best;
 }
 
@@ -85,8 +86,8 @@ void validate_outline(const std::vector<Vec2>& v, const std::string& what) {
 
 // The validated, oriented input.
 struct Prepared {
-  std::vector<Vec2> domain;               // counter-clockwise
-  std::vector<std::vector<Vec2>> holes;   // counter-clockwise
+  std::vector<Vec2> domain;              // counter-clockwise
+  std::vector<std::vector<Vec2>> holes;  // counter-clockwise
   std::vector<Box> hole_boxes;
   Box box;
   double size = 0;  // larger side of the domain's bounding box
@@ -107,8 +108,8 @@ Prepared prepare(const CutInput& in) {
   if (!std::isfinite(in.snap_tolerance) || in.snap_tolerance < 0)
     throw Error(msg("snap tolerance must be a finite length ≥ 0, got ", in.snap_tolerance));
   if (in.snap_tolerance > kMaxRelativeSnap * p.size)
-    throw Error(msg("snap tolerance ", in.snap_tolerance, " is too large for a domain of size ", p.size,
-                    " (at most ", kMaxRelativeSnap, " × the size)"));
+    throw Error(msg("snap tolerance ", in.snap_tolerance, " is too large for a domain of size ", p.size, " (at most ",
+                    kMaxRelativeSnap, " × the size)"));
   p.tol = in.snap_tolerance > 0 ? in.snap_tolerance : 1e-9 * p.size;
   const double tol = p.tol;
 
@@ -135,8 +136,10 @@ Prepared prepare(const CutInput& in) {
     }
     for (std::size_t i = 0; i < hole.size(); ++i)
       for (std::size_t j = 0; j < p.domain.size(); ++j)
-        if (segment_distance(hole[i], hole[(i + 1) % hole.size()], p.domain[j], p.domain[(j + 1) % p.domain.size()]) <= tol)
-          throw Error(msg(what, " crosses or touches the domain boundary (hole edge ", i + 1, ", domain edge ", j + 1, ")"));
+        if (segment_distance(hole[i], hole[(i + 1) % hole.size()], p.domain[j], p.domain[(j + 1) % p.domain.size()]) <=
+            tol)
+          throw Error(
+              msg(what, " crosses or touches the domain boundary (hole edge ", i + 1, ", domain edge ", j + 1, ")"));
     p.hole_boxes.push_back(Box::of(hole));
     p.expected_area -= signed_area(hole);
     p.holes.push_back(std::move(hole));
@@ -227,7 +230,8 @@ SegmentList collect_segments(const CutInput& in, const Prepared& p, const std::v
       const double crossings = set_length[a] * set_length[b] * std::abs(std::sin(angle)) / (wide.x() * wide.y());
       if (crossings > kMaxSetCrossings)
         throw Error(msg("joint sets ", a + 1, " and ", b + 1, " would cross about ", std::round(crossings),
-                        " times (limit ", kMaxSetCrossings, "): far more blocks than a model can run; check the spacings"));
+                        " times (limit ", kMaxSetCrossings,
+                        "): far more blocks than a model can run; check the spacings"));
     }
   return list;
 }
@@ -376,8 +380,9 @@ class PlanarGraph {
       int h = h0;
       do {
         if (!rock(h) || face_[h] >= 0 || f.size > nh)
-          throw Error("block cutting: internal error: inconsistent face (a face meets the outside of the "
-                      "domain); please report the input");
+          throw Error(
+              "block cutting: internal error: inconsistent face (a face meets the outside of the "
+              "domain); please report the input");
         face_[h] = id;
         twice += cross(v_[origin(h)] - o, v_[head(h)] - o);
         f.perimeter += length(h >> 1);
@@ -484,8 +489,9 @@ std::vector<JointLine> inner_loop_cuts(const PlanarGraph& g, const CutInput& in)
     return -1;
   };
   auto refuse = [&](int hole, const Vec2& where, bool pinched) {
-    const std::string fix = ", which DDA cannot represent. Add joints that reach it, or set inner_cut_material to "
-                            "cut it free automatically";
+    const std::string fix =
+        ", which DDA cannot represent. Add joints that reach it, or set inner_cut_material to "
+        "cut it free automatically";
     const std::string twice = pinched ? " (its outline passing twice through one point)" : "";
     if (hole >= 0)
       throw Error(msg("hole ", hole + 1,
@@ -506,8 +512,8 @@ std::vector<JointLine> inner_loop_cuts(const PlanarGraph& g, const CutInput& in)
     return v;
   };
 
-  std::vector<int> slot(g.vertex_count(), -1);     // vertex → position on the walk stack
-  std::vector<char> pinch(g.vertex_count(), 0);    // vertex visited twice by the current face
+  std::vector<int> slot(g.vertex_count(), -1);   // vertex → position on the walk stack
+  std::vector<char> pinch(g.vertex_count(), 0);  // vertex visited twice by the current face
   std::vector<int> walk, stack;
   std::vector<std::vector<int>> loops;
   for (const PlanarGraph::Face& f : g.faces()) {
@@ -579,8 +585,8 @@ std::vector<JointLine> inner_loop_cuts(const PlanarGraph& g, const CutInput& in)
         const Vec2 a = g.pos(g.origin(longest)), b = g.pos(g.head(longest));
         const Vec2 mid = 0.5 * (a + b);
         const Vec2 inward = Vec2(-(b - a).y(), (b - a).x()).normalized();  // the block lies to the left
-        cuts.push_back({mid, first_hit(g, mid, inward, [&](int e) { return e == (longest >> 1); }),
-                        in.inner_cut_material});
+        cuts.push_back(
+            {mid, first_hit(g, mid, inward, [&](int e) { return e == (longest >> 1); }), in.inner_cut_material});
       }
     }
     for (int e : walk) pinch[g.origin(e)] = 0;
@@ -883,8 +889,8 @@ std::vector<int> BlockSet::blocks_in_box(const Vec2& box_lo, const Vec2& box_hi,
         take = in_box(block.centroid, lo, hi);
         break;
       case BoxSelect::Inside:
-        take = std::all_of(block.vertices.begin(), block.vertices.end(),
-                           [&](const Vec2& v) { return in_box(v, lo, hi); });
+        take =
+            std::all_of(block.vertices.begin(), block.vertices.end(), [&](const Vec2& v) { return in_box(v, lo, hi); });
         break;
       case BoxSelect::Overlap: {
         const Box box = Box::of(block.vertices);

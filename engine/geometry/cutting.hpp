@@ -24,9 +24,9 @@ namespace dda::geometry {
 
 // A family of parallel joints.
 struct JointSet {
-  double dip_deg = 0;           // direction of the joints, degrees from +x, counter-clockwise
-  double spacing = 1;           // distance between neighbouring joints, perpendicular to them (m)
-  Vec2 origin = Vec2::Zero();   // a point one joint of the set passes through
+  double dip_deg = 0;          // direction of the joints, degrees from +x, counter-clockwise
+  double spacing = 1;          // distance between neighbouring joints, perpendicular to them (m)
+  Vec2 origin = Vec2::Zero();  // a point one joint of the set passes through
   int joint_material = 0;
   // Persistence: 0 = every joint crosses the whole domain. Otherwise each
   // joint line is a row of traces of this length separated by rock bridges
@@ -72,13 +72,13 @@ enum class SliverPolicy {
 };
 
 struct CutInput {
-  std::vector<Vec2> domain;               // simple polygon, either orientation
-  std::vector<std::vector<Vec2>> holes;   // simple polygons strictly inside the domain, disjoint
+  std::vector<Vec2> domain;              // simple polygon, either orientation
+  std::vector<std::vector<Vec2>> holes;  // simple polygons strictly inside the domain, disjoint
   std::vector<JointSet> sets;
   std::vector<JointLine> lines;
   std::vector<MaterialRegion> regions;
   int default_rock_material = 0;
-  double min_block_area = 0;              // m²; blocks below it are merged or reported
+  double min_block_area = 0;  // m²; blocks below it are merged or reported
   SliverPolicy sliver_policy = SliverPolicy::Merge;
   // Points closer than this are one vertex, and a point this close to a
   // segment lies on it. 0 = 1e-9 × the larger side of the domain's bounding box.
@@ -126,13 +126,13 @@ struct EdgeRef {
 
 // Figures from one cut, for benchmarks and diagnostics.
 struct CutStats {
-  int input_segments = 0;    // boundary edges + joint segments fed to the arrangement
+  int input_segments = 0;  // boundary edges + joint segments fed to the arrangement
   int arrangement_rounds = 0;
-  int vertices = 0;          // of the arrangement inside the rock
-  int edges = 0;             // of the arrangement inside the rock, before tree cutting
+  int vertices = 0;  // of the arrangement inside the rock
+  int edges = 0;     // of the arrangement inside the rock, before tree cutting
   int dangling_edges_removed = 0;
-  int slivers_merged = 0;    // blocks below min_block_area (or degenerate) merged into a neighbour
-  int inner_cuts = 0;        // automatic cuts added for inner loops (inner_cut_material)
+  int slivers_merged = 0;  // blocks below min_block_area (or degenerate) merged into a neighbour
+  int inner_cuts = 0;      // automatic cuts added for inner loops (inner_cut_material)
 };
 
 enum class BoxSelect {

@@ -120,12 +120,12 @@ void validate_joint_set(const JointSet& set, int index, double box_size) {
 
   // Lines needed: with spacing variation the walk starts at the origin, so
   // count from there to the far side of the box.
-  const double reach = set.spacing_sd > 0 ? 2 * (box_size + std::max(std::abs(set.origin.x()), std::abs(set.origin.y())))
-                                          : 2 * box_size;
+  const double reach =
+      set.spacing_sd > 0 ? 2 * (box_size + std::max(std::abs(set.origin.x()), std::abs(set.origin.y()))) : 2 * box_size;
   const double lines = reach / set.spacing;
   if (!(lines <= kMaxLinesPerSet))
-    throw Error(msg(what, ": spacing ", set.spacing, " would make about ", lines,
-                    " joint lines (limit ", kMaxLinesPerSet, "); check the spacing and the domain size",
+    throw Error(msg(what, ": spacing ", set.spacing, " would make about ", lines, " joint lines (limit ",
+                    kMaxLinesPerSet, "); check the spacing and the domain size",
                     set.spacing_sd > 0 ? ", and keep the origin of a set with spacing variation near the domain" : ""));
   if (set.trace_length > 0) {
     const double traces = (2 * box_size / set.spacing) * (2 * box_size / (set.trace_length + set.bridge_length));

@@ -88,8 +88,7 @@ void validate_simple_polygon(std::span<const Vec2> v, const std::string& what) {
       throw Error(msg(what, ": vertices ", k + 1, " and ", (k + 1) % n + 1, " are repeated (zero-length edge)"));
   }
   const double area = signed_area(v);
-  if (!(std::abs(area) > tol * extent))
-    throw Error(msg(what, ": polygon has zero area"));
+  if (!(std::abs(area) > tol * extent)) throw Error(msg(what, ": polygon has zero area"));
   // Self-intersection: any two non-adjacent edges that meet. O(n²); block
   // outlines are small, and this runs once per block at creation.
   for (std::size_t i = 0; i < n; ++i) {

@@ -14,7 +14,8 @@ History::History(std::vector<std::pair<double, double>> points, const std::strin
     if (!std::isfinite(t) || !std::isfinite(v))
       throw Error(msg(what, ": point ", i + 1, " is not finite (t = ", t, ", value = ", v, ")"));
     if (i > 0 && !(t > points[i - 1].first))
-      throw Error(msg(what, ": times must increase, but point ", i + 1, " has t = ", t, " after t = ", points[i - 1].first));
+      throw Error(
+          msg(what, ": times must increase, but point ", i + 1, " has t = ", t, " after t = ", points[i - 1].first));
     t_.push_back(t);
     v_.push_back(v);
   }

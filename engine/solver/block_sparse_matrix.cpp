@@ -40,7 +40,8 @@ int BlockSparseMatrix::find(int i, int j) const {
 
 void BlockSparseMatrix::multiply(const VecX& x, VecX& y) const {
   y.resize(6 * n_);
-  parallel_for_each(n_, [&](std::size_t i) { multiply_rows(static_cast<int>(i), static_cast<int>(i) + 1, x, y); }, 32);
+  parallel_for_each(
+      n_, [&](std::size_t i) { multiply_rows(static_cast<int>(i), static_cast<int>(i) + 1, x, y); }, 32);
 }
 
 void BlockSparseMatrix::multiply_rows(int begin, int end, const VecX& x, VecX& y) const {

@@ -121,8 +121,8 @@ class PcgSolver final : public LinearSolver {
 
   const LinearOperator* a_ = nullptr;
   std::unique_ptr<Preconditioner> pre_;
-  VecX r_, z_, p_, ap_;          // reused between solves: no allocation in the step loop
-  bool residual_valid_ = false;  // r_ = b − A·x for the x the last solve returned (converged)
+  VecX r_, z_, p_, ap_;                     // reused between solves: no allocation in the step loop
+  bool residual_valid_ = false;             // r_ = b − A·x for the x the last solve returned (converged)
   std::vector<double> partial_, partial2_;  // per-chunk partial sums of the fused kernels
   // The patch of a re-solve: its rows (ascending), the rows just outside it
   // whose residual its correction changes, a mark per row (on either list),

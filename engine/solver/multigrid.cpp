@@ -55,7 +55,8 @@ void Multigrid::setup(const LinearOperator& op) {
   const BlockSparseMatrix& a = op.stored();
   fine_ = &a;
   const auto rows = a.row_starts(), cols = a.columns();
-  const bool same_pattern = !levels_.empty() && std::equal(rows.begin(), rows.end(), pattern_rows_.begin(), pattern_rows_.end()) &&
+  const bool same_pattern = !levels_.empty() &&
+                            std::equal(rows.begin(), rows.end(), pattern_rows_.begin(), pattern_rows_.end()) &&
                             std::equal(cols.begin(), cols.end(), pattern_cols_.begin(), pattern_cols_.end());
   if (same_pattern) {
     for (std::size_t l = 0; l < levels_.size(); ++l) {
@@ -187,7 +188,8 @@ void Multigrid::build_transfer_pattern(std::size_t level) {
     f.ap_start[i + 1] = static_cast<int>(f.ap_col.size());
     for (int k = a.row_begin(i); k < a.row_end(i); ++k)
       for (int e = f.p_start[a.col(k)]; e < f.p_start[a.col(k) + 1]; ++e)
-        f.ap_index.push_back(base + static_cast<int>(std::lower_bound(cols.begin(), cols.end(), f.p_col[e]) - cols.begin()));
+        f.ap_index.push_back(base +
+                             static_cast<int>(std::lower_bound(cols.begin(), cols.end(), f.p_col[e]) - cols.begin()));
     f.ap_offset[i + 1] = static_cast<int>(f.ap_index.size());
   }
   f.ap_val.resize(f.ap_col.size());
@@ -226,13 +228,16 @@ int Multigrid::aggregate(std::size_t level) {
     l_inv[i] = ok[i] ? Mat6(llt.matrixL().solve(Mat6::Identity())) : Mat6::Zero();
   });
   std::vector<double> strength(a.nonzero_blocks(), 0.0);
-  parallel_for_each(n, [&](std::size_t i) {
-    for (int k = a.row_begin(static_cast<int>(i)); k < a.row_end(static_cast<int>(i)); ++k) {
-      const int j = a.col(k);
-      if (j == static_cast<int>(i) || !ok[i] || !ok[j]) continue;
-      strength[k] = (l_inv[i] * a.value(k) * l_inv[j].transpose()).norm();
-    }
-  }, 32);
+  parallel_for_each(
+      n,
+      [&](std::size_t i) {
+        for (int k = a.row_begin(static_cast<int>(i)); k < a.row_end(static_cast<int>(i)); ++k) {
+          const int j = a.col(k);
+          if (j == static_cast<int>(i) || !ok[i] || !ok[j]) continue;
+          strength[k] = (l_inv[i] * a.value(k) * l_inv[j].transpose()).norm();
+        }
+      },
+      32);
   const double theta = options_.strength_threshold;
   auto strong = [&](int k) { return strength[k] >= theta && strength[k] > 0; };
 
@@ -311,43 +316,54 @@ void Multigrid::galerkin(std::size_t level) {
   const bool smooth = f.smooth;
   const double wp = (4.0 / 3.0) / f.lambda;
   // P = (I − ω_p D⁻¹A)·P_tent, P_tent(i, agg(i)) = Q_i.
-  parallel_for_each(n, [&](std::size_t r) {
-    const int i = static_cast<int>(r);
-    for (int e = f.p_start[i]; e < f.p_start[i + 1]; ++e) f.p_val[e].setZero();
-    for (int k = a.row_begin(i); k < a.row_end(i); ++k) {
-      const int j = a.col(k);
-      if (!smooth) {
-        if (j == i) f.p_val[f.p_source[k]] = Q(f.b[i]);
-        continue;
-      }
-      Mat6 m = (-wp) * (f.dinv[i] * a.value(k));
-      if (j == i) m.diagonal().array() += 1.0;
-      Mat6& out = f.p_val[f.p_source[k]];
-      out += m;
-      out.rightCols<4>().noalias() += m.leftCols<2>() * f.b[j];
-    }
-  }, 32);
+  parallel_for_each(
+      n,
+      [&](std::size_t r) {
+        const int i = static_cast<int>(r);
+        for (int e = f.p_start[i]; e < f.p_start[i + 1]; ++e) f.p_val[e].setZero();
+        for (int k = a.row_begin(i); k < a.row_end(i); ++k) {
+          const int j = a.col(k);
+          if (!smooth) {
+            if (j == i) f.p_val[f.p_source[k]] = Q(f.b[i]);
+            continue;
+          }
+          Mat6 m = (-wp) * (f.dinv[i] * a.value(k));
+          if (j == i) m.diagonal().array() += 1.0;
+          Mat6& out = f.p_val[f.p_source[k]];
+          out += m;
+          out.rightCols<4>().noalias() += m.leftCols<2>() * f.b[j];
+        }
+      },
+      32);
   // A·P by fine rows (ap_index lists row i's targets from ap_offset[i] on).
-  parallel_for_each(n, [&](std::size_t r) {
-    const int i = static_cast<int>(r);
-    for (int g = f.ap_start[i]; g < f.ap_start[i + 1]; ++g) f.ap_val[g].setZero();
-    int t = f.ap_offset[i];
-    for (int k = a.row_begin(i); k < a.row_end(i); ++k) {
-      const int j = a.col(k);
-      for (int e = f.p_start[j]; e < f.p_start[j + 1]; ++e) f.ap_val[f.ap_index[t++]].noalias() += a.value(k) * f.p_val[e];
-    }
-  }, 32);
+  parallel_for_each(
+      n,
+      [&](std::size_t r) {
+        const int i = static_cast<int>(r);
+        for (int g = f.ap_start[i]; g < f.ap_start[i + 1]; ++g) f.ap_val[g].setZero();
+        int t = f.ap_offset[i];
+        for (int k = a.row_begin(i); k < a.row_end(i); ++k) {
+          const int j = a.col(k);
+          for (int e = f.p_start[j]; e < f.p_start[j + 1]; ++e)
+            f.ap_val[f.ap_index[t++]].noalias() += a.value(k) * f.p_val[e];
+        }
+      },
+      32);
   // PᵀAP by coarse rows.
-  parallel_for_each(ac.rows(), [&](std::size_t r) {
-    const int row = static_cast<int>(r);
-    for (int k = ac.row_begin(row); k < ac.row_end(row); ++k) ac.value(k).setZero();
-    int t = f.g_start[row];
-    for (int s = f.pt_start[row]; s < f.pt_start[row + 1]; ++s) {
-      const int i = f.pt_row[s];
-      const Mat6& p = f.p_val[f.pt_entry[s]];
-      for (int g = f.ap_start[i]; g < f.ap_start[i + 1]; ++g) ac.value(f.g_index[t++]).noalias() += p.transpose() * f.ap_val[g];
-    }
-  }, 8);
+  parallel_for_each(
+      ac.rows(),
+      [&](std::size_t r) {
+        const int row = static_cast<int>(r);
+        for (int k = ac.row_begin(row); k < ac.row_end(row); ++k) ac.value(k).setZero();
+        int t = f.g_start[row];
+        for (int s = f.pt_start[row]; s < f.pt_start[row + 1]; ++s) {
+          const int i = f.pt_row[s];
+          const Mat6& p = f.p_val[f.pt_entry[s]];
+          for (int g = f.ap_start[i]; g < f.ap_start[i + 1]; ++g)
+            ac.value(f.g_index[t++]).noalias() += p.transpose() * f.ap_val[g];
+        }
+      },
+      8);
 }
 
 void Multigrid::update_smoother(std::size_t level, bool estimate_weight) {
@@ -355,7 +371,8 @@ void Multigrid::update_smoother(std::size_t level, bool estimate_weight) {
   Level& lv = levels_[level];
   const int n = a.rows();
   lv.dinv.resize(n);
-  parallel_for_each(n, [&](std::size_t i) { lv.dinv[i] = inverse_of_diagonal(a.value(a.diagonal(static_cast<int>(i)))); });
+  parallel_for_each(n,
+                    [&](std::size_t i) { lv.dinv[i] = inverse_of_diagonal(a.value(a.diagonal(static_cast<int>(i)))); });
   if (!estimate_weight) return;
   // λmax(D⁻¹A) by power iteration from a fixed start (the Rayleigh quotient
   // vᵀAv / vᵀDv, a lower bound that converges from below).
@@ -413,14 +430,18 @@ void Multigrid::vcycle(std::size_t level, const VecX& b, VecX& x) const {
   }
   const double w = lv.weight;
   // Pre-smoothing from a zero guess: x = ωD⁻¹b, then further sweeps.
-  parallel_for_each(n, [&](std::size_t i) { x.segment<6>(6 * i).noalias() = w * (lv.dinv[i] * b.segment<6>(6 * i)); }, 128);
+  parallel_for_each(
+      n, [&](std::size_t i) { x.segment<6>(6 * i).noalias() = w * (lv.dinv[i] * b.segment<6>(6 * i)); }, 128);
   auto sweep = [&] {  // y = x + ωD⁻¹(b − A·x); x ↔ y
-    parallel_for_each(n, [&](std::size_t i) {
-      Vec6 s = b.segment<6>(6 * i);
-      for (int k = a.row_begin(static_cast<int>(i)); k < a.row_end(static_cast<int>(i)); ++k)
-        s.noalias() -= a.value(k) * x.segment<6>(6 * a.col(k));
-      lv.y.segment<6>(6 * i).noalias() = x.segment<6>(6 * i) + w * (lv.dinv[i] * s);
-    }, 32);
+    parallel_for_each(
+        n,
+        [&](std::size_t i) {
+          Vec6 s = b.segment<6>(6 * i);
+          for (int k = a.row_begin(static_cast<int>(i)); k < a.row_end(static_cast<int>(i)); ++k)
+            s.noalias() -= a.value(k) * x.segment<6>(6 * a.col(k));
+          lv.y.segment<6>(6 * i).noalias() = x.segment<6>(6 * i) + w * (lv.dinv[i] * s);
+        },
+        32);
     x.swap(lv.y);
   };
   for (int s = 1; s < options_.smoothing_steps; ++s) sweep();
@@ -429,26 +450,36 @@ void Multigrid::vcycle(std::size_t level, const VecX& b, VecX& x) const {
     return;
   }
   // Residual, then restriction rc = Pᵀr by coarse rows.
-  parallel_for_each(n, [&](std::size_t i) {
-    Vec6 s = b.segment<6>(6 * i);
-    for (int k = a.row_begin(static_cast<int>(i)); k < a.row_end(static_cast<int>(i)); ++k)
-      s.noalias() -= a.value(k) * x.segment<6>(6 * a.col(k));
-    lv.res.segment<6>(6 * i) = s;
-  }, 32);
+  parallel_for_each(
+      n,
+      [&](std::size_t i) {
+        Vec6 s = b.segment<6>(6 * i);
+        for (int k = a.row_begin(static_cast<int>(i)); k < a.row_end(static_cast<int>(i)); ++k)
+          s.noalias() -= a.value(k) * x.segment<6>(6 * a.col(k));
+        lv.res.segment<6>(6 * i) = s;
+      },
+      32);
   const Level& c = levels_[level + 1];
-  parallel_for_each(c.owned.rows(), [&](std::size_t ac) {
-    Vec6 rc = Vec6::Zero();
-    for (int t = lv.pt_start[ac]; t < lv.pt_start[ac + 1]; ++t)
-      rc.noalias() += lv.p_val[lv.pt_entry[t]].transpose() * lv.res.segment<6>(6 * lv.pt_row[t]);
-    c.rhs.segment<6>(6 * ac) = rc;
-  }, 16);
+  parallel_for_each(
+      c.owned.rows(),
+      [&](std::size_t ac) {
+        Vec6 rc = Vec6::Zero();
+        for (int t = lv.pt_start[ac]; t < lv.pt_start[ac + 1]; ++t)
+          rc.noalias() += lv.p_val[lv.pt_entry[t]].transpose() * lv.res.segment<6>(6 * lv.pt_row[t]);
+        c.rhs.segment<6>(6 * ac) = rc;
+      },
+      16);
   vcycle(level + 1, c.rhs, c.x);
   // Prolongation: x += P·xc.
-  parallel_for_each(n, [&](std::size_t i) {
-    Vec6 s = Vec6::Zero();
-    for (int e = lv.p_start[i]; e < lv.p_start[i + 1]; ++e) s.noalias() += lv.p_val[e] * c.x.segment<6>(6 * lv.p_col[e]);
-    x.segment<6>(6 * i) += s;
-  }, 64);
+  parallel_for_each(
+      n,
+      [&](std::size_t i) {
+        Vec6 s = Vec6::Zero();
+        for (int e = lv.p_start[i]; e < lv.p_start[i + 1]; ++e)
+          s.noalias() += lv.p_val[e] * c.x.segment<6>(6 * lv.p_col[e]);
+        x.segment<6>(6 * i) += s;
+      },
+      64);
   for (int s = 0; s < options_.smoothing_steps; ++s) sweep();
 }
 

@@ -71,7 +71,7 @@ struct MultigridOptions {
   // than this and than twice the level above (smoothed aggregation of weakly
   // coupled blocks fills in fast).
   int max_coarse_fill = 24;
-  int smoothing_steps = 1;   // block-Jacobi sweeps before and after the coarse correction
+  int smoothing_steps = 1;  // block-Jacobi sweeps before and after the coarse correction
   // Smoothed aggregation: P = (I − ω_p D⁻¹A)·P_tentative, ω_p = (4/3)/λmax(D⁻¹A).
   // The tentative (piecewise-linear) P alone leaves jumps between aggregates
   // that the stiff contact springs make expensive; smoothing spreads them out.

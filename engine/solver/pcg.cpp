@@ -101,7 +101,8 @@ void BlockJacobi::setup(const LinearOperator& a) {
 
 void BlockJacobi::apply(const VecX& r, VecX& z) const {
   z.resize(r.size());
-  parallel_for_each(inverse_.size(), [&](std::size_t i) { apply_rows(i, i + 1, r, z); }, 128);
+  parallel_for_each(
+      inverse_.size(), [&](std::size_t i) { apply_rows(i, i + 1, r, z); }, 128);
 }
 
 void BlockJacobi::apply_rows(std::size_t begin, std::size_t end, const VecX& r, VecX& z) const {
@@ -144,10 +145,13 @@ std::pair<double, double> PcgSolver::chunked_sums(std::size_t blocks, F&& f) {
   const std::size_t chunks = (blocks + kPcgChunk - 1) / kPcgChunk;
   partial_.resize(chunks);
   partial2_.resize(chunks);
-  parallel_for_each(chunks, [&](std::size_t c) {
-    partial_[c] = partial2_[c] = 0;
-    f(c * kPcgChunk, std::min(blocks, (c + 1) * kPcgChunk), partial_[c], partial2_[c]);
-  }, 1);
+  parallel_for_each(
+      chunks,
+      [&](std::size_t c) {
+        partial_[c] = partial2_[c] = 0;
+        f(c * kPcgChunk, std::min(blocks, (c + 1) * kPcgChunk), partial_[c], partial2_[c]);
+      },
+      1);
   double first = 0, second = 0;
   for (std::size_t c = 0; c < chunks; ++c) {
     first += partial_[c];
@@ -158,7 +162,9 @@ std::pair<double, double> PcgSolver::chunked_sums(std::size_t blocks, F&& f) {
 
 template <typename F>
 double PcgSolver::chunked_sum(std::size_t blocks, F&& f) {
-  return chunked_sums(blocks, [&](std::size_t begin, std::size_t end, double& share, double&) { share = f(begin, end); }).first;
+  return chunked_sums(blocks,
+                      [&](std::size_t begin, std::size_t end, double& share, double&) { share = f(begin, end); })
+      .first;
 }
 
 SolveReport PcgSolver::solve_from(const VecX& b, VecX& x, std::span<const char> changed_rows) {
@@ -274,7 +280,9 @@ SolveReport PcgSolver::solve_from(const VecX& b, VecX& x, std::span<const char> 
     }
     const double beta = rz_next / rz;
     rz = rz_next;
-    parallel_for_each(blocks, [&](std::size_t i) { p_.segment<6>(6 * i) = z_.segment<6>(6 * i) + beta * p_.segment<6>(6 * i); }, kPcgChunk);
+    parallel_for_each(
+        blocks, [&](std::size_t i) { p_.segment<6>(6 * i) = z_.segment<6>(6 * i) + beta * p_.segment<6>(6 * i); },
+        kPcgChunk);
   }
   return report;
 }
@@ -359,40 +367,52 @@ double PcgSolver::solve_on_patch(VecX& x, double bnorm, SolveReport& report) {
     report.patch_iterations = it;
     if (!std::isfinite(pap) || !(pap > 0) || !(rz > 0)) break;  // the global PCG reports the breakdown
     const double alpha = rz / pap;
-    const auto [rr_patch, rz_next] = chunked_sums(rows, [&](std::size_t begin, std::size_t end, double& r2, double& r_z) {
-      for (std::size_t k = begin; k < end; ++k) {
-        const std::size_t i = row(k);
-        const Vec6 step = alpha * patch_p_.segment<6>(6 * i);
-        x.segment<6>(6 * i) += step;
-        patch_d_.segment<6>(6 * i) += step;
-        r_.segment<6>(6 * i) -= alpha * ap_.segment<6>(6 * i);
-        r2 += r_.segment<6>(6 * i).squaredNorm();
-        pre_->apply_rows(i, i + 1, r_, z_);
-        r_z += r_.segment<6>(6 * i).dot(z_.segment<6>(6 * i));
-      }
-    });
+    const auto [rr_patch, rz_next] =
+        chunked_sums(rows, [&](std::size_t begin, std::size_t end, double& r2, double& r_z) {
+          for (std::size_t k = begin; k < end; ++k) {
+            const std::size_t i = row(k);
+            const Vec6 step = alpha * patch_p_.segment<6>(6 * i);
+            x.segment<6>(6 * i) += step;
+            patch_d_.segment<6>(6 * i) += step;
+            r_.segment<6>(6 * i) -= alpha * ap_.segment<6>(6 * i);
+            r2 += r_.segment<6>(6 * i).squaredNorm();
+            pre_->apply_rows(i, i + 1, r_, z_);
+            r_z += r_.segment<6>(6 * i).dot(z_.segment<6>(6 * i));
+          }
+        });
     if (!std::isfinite(rr_patch) || rr_patch <= target * target) break;
     const double beta = rz_next / rz;
     rz = rz_next;
-    parallel_for_each(rows, [&](std::size_t k) {
-      const std::size_t i = row(k);
-      patch_p_.segment<6>(6 * i) = z_.segment<6>(6 * i) + beta * patch_p_.segment<6>(6 * i);
-    }, kPcgChunk);
+    parallel_for_each(
+        rows,
+        [&](std::size_t k) {
+          const std::size_t i = row(k);
+          patch_p_.segment<6>(6 * i) = z_.segment<6>(6 * i) + beta * patch_p_.segment<6>(6 * i);
+        },
+        kPcgChunk);
   }
   // The rows just outside: r −= A·d there (d is zero off the patch).
-  parallel_for_each(patch_boundary_.size(), [&](std::size_t k) {
-    const int i = patch_boundary_[k];
-    a.multiply_rows(i, i + 1, patch_d_, ap_);
-    r_.segment<6>(6 * i) -= ap_.segment<6>(6 * i);
-    patch_mark_[i] = 0;
-  }, kPcgChunk);
-  parallel_for_each(rows, [&](std::size_t k) {
-    const std::size_t i = row(k);
-    patch_p_.segment<6>(6 * i).setZero();
-    patch_d_.segment<6>(6 * i).setZero();
-    patch_mark_[i] = 0;
-  }, kPcgChunk);
-  return chunked_sum(n / 6, [&](std::size_t begin, std::size_t end) { return r_.segment(6 * begin, 6 * (end - begin)).squaredNorm(); });
+  parallel_for_each(
+      patch_boundary_.size(),
+      [&](std::size_t k) {
+        const int i = patch_boundary_[k];
+        a.multiply_rows(i, i + 1, patch_d_, ap_);
+        r_.segment<6>(6 * i) -= ap_.segment<6>(6 * i);
+        patch_mark_[i] = 0;
+      },
+      kPcgChunk);
+  parallel_for_each(
+      rows,
+      [&](std::size_t k) {
+        const std::size_t i = row(k);
+        patch_p_.segment<6>(6 * i).setZero();
+        patch_d_.segment<6>(6 * i).setZero();
+        patch_mark_[i] = 0;
+      },
+      kPcgChunk);
+  return chunked_sum(n / 6, [&](std::size_t begin, std::size_t end) {
+    return r_.segment(6 * begin, 6 * (end - begin)).squaredNorm();
+  });
 }
 
 SolveReport DirectSolver::solve(const VecX& b, VecX& x) {

@@ -20,8 +20,10 @@ Preconditioning choose_preconditioning(Preconditioning requested, const SystemTr
 std::unique_ptr<Preconditioner> make_preconditioner(Preconditioning kind) {
   switch (kind) {
     case Preconditioning::Auto:
-    case Preconditioning::BlockJacobi: return std::make_unique<BlockJacobi>();
-    case Preconditioning::Multigrid: return std::make_unique<Multigrid>();
+    case Preconditioning::BlockJacobi:
+      return std::make_unique<BlockJacobi>();
+    case Preconditioning::Multigrid:
+      return std::make_unique<Multigrid>();
   }
   return std::make_unique<BlockJacobi>();
 }

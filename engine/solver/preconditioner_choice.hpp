@@ -30,7 +30,8 @@ enum class Preconditioning;
 // Facts about the system that decide Preconditioning::Auto.
 struct SystemTraits {
   SystemTraits() = default;
-  SystemTraits(int blocks_, double stiffness_to_inertia_ = 0) : blocks(blocks_), stiffness_to_inertia(stiffness_to_inertia_) {}
+  SystemTraits(int blocks_, double stiffness_to_inertia_ = 0)
+      : blocks(blocks_), stiffness_to_inertia(stiffness_to_inertia_) {}
 
   int blocks = 0;
   // Largest ratio, over blocks, of contact + elastic stiffness to the inertia

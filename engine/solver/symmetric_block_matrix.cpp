@@ -48,7 +48,8 @@ void SymmetricBlockMatrix::multiply_rows(int begin, int end, const VecX& x, VecX
     Vec6 s = Vec6::Zero();
     for (int r = lower_start_[i]; r < lower_start_[i + 1]; ++r)
       s.noalias() += values_[lower_block_[r]].transpose() * x.segment<6>(6 * lower_row_[r]);
-    for (int k = upper_start_[i]; k < upper_start_[i + 1]; ++k) s.noalias() += values_[k] * x.segment<6>(6 * upper_col_[k]);
+    for (int k = upper_start_[i]; k < upper_start_[i + 1]; ++k)
+      s.noalias() += values_[k] * x.segment<6>(6 * upper_col_[k]);
     y.segment<6>(6 * i) = s;
   }
 }

@@ -30,7 +30,7 @@ class SymmetricBlockMatrix {
 
  private:
   int n_ = 0;
-  std::vector<int> upper_start_, upper_col_;    // row i: blocks (i, j ≥ i), diagonal first
+  std::vector<int> upper_start_, upper_col_;                // row i: blocks (i, j ≥ i), diagonal first
   std::vector<int> lower_start_, lower_row_, lower_block_;  // row i: blocks (j < i, i), read as (i, j)ᵀ
   std::vector<Mat6> values_;
 };

@@ -14,7 +14,8 @@ void World::check_edges(const std::vector<EdgeRef>& edges, const std::string& wh
     if (e.block < 0 || static_cast<std::size_t>(e.block) >= block_count())
       throw Error(msg(what, ": no block ", e.block));
     const int n = vertex_start_[e.block + 1] - vertex_start_[e.block];
-    if (e.edge < 0 || e.edge >= n) throw Error(msg(what, ": block ", e.block, " has no edge ", e.edge, " (it has ", n, ")"));
+    if (e.edge < 0 || e.edge >= n)
+      throw Error(msg(what, ": block ", e.block, " has no edge ", e.edge, " (it has ", n, ")"));
   }
 }
 
@@ -41,7 +42,8 @@ void World::set_pressure_history(int id, History pressure) {
 
 void World::set_point_load_history(int id, const Vec2& direction, History magnitude) {
   if (id < 0 || id >= static_cast<int>(point_loads_.size())) throw Error(msg("no point load ", id));
-  if (!direction.allFinite() || direction.norm() == 0) throw Error(msg("point load ", id, ": direction must be a non-zero vector"));
+  if (!direction.allFinite() || direction.norm() == 0)
+    throw Error(msg("point load ", id, ": direction must be a non-zero vector"));
   for (PointLoadHistory& h : point_load_histories_)
     if (h.load == id) {
       h = {id, direction, std::move(magnitude)};
@@ -142,7 +144,8 @@ int World::add_spring_boundary(const std::vector<EdgeRef>& edges, double p, bool
     const auto v = block_vertices(e.block);
     const Vec2 a = v[e.edge], b = v[(e.edge + 1) % v.size()];
     const double k = per_length ? p * (b - a).norm() : p;
-    for (const Vec2& pt : {a, b}) boundary_points_.push_back({id, e.block, pt, pt, Eigen::Matrix2d::Zero(), k, Vec2::Zero()});
+    for (const Vec2& pt : {a, b})
+      boundary_points_.push_back({id, e.block, pt, pt, Eigen::Matrix2d::Zero(), k, Vec2::Zero()});
   }
   boundaries_.push_back({BoundaryKind::Spring, first, static_cast<int>(boundary_points_.size()) - first});
   return id;

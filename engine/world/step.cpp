@@ -46,11 +46,13 @@ StepStats World::step() {
         save_contact_states();
         continue;
       }
-      stats.cut_reason = msg(describe(r), r == Rejection::BlockInverted ? msg(" (block ", m.inverted_block, ")") : std::string());
+      stats.cut_reason =
+          msg(describe(r), r == Rejection::BlockInverted ? msg(" (block ", m.inverted_block, ")") : std::string());
       if (stats.step_cuts == controls_.max_step_cuts)
-        throw Error(msg("step ", steps_ + 1, " at t = ", time_, " s: ", stats.cut_reason, " even after ", stats.step_cuts,
-                        " cuts of the time step (down to ", dt_, " s). ",
-                        r == Rejection::PenetrationTooDeep ? "Raise g0 (contact stiffness) or g2." : "Check loads, g0 and g2."));
+        throw Error(msg(
+            "step ", steps_ + 1, " at t = ", time_, " s: ", stats.cut_reason, " even after ", stats.step_cuts,
+            " cuts of the time step (down to ", dt_, " s). ",
+            r == Rejection::PenetrationTooDeep ? "Raise g0 (contact stiffness) or g2." : "Check loads, g0 and g2."));
       ++stats.step_cuts;
       restore_contact_states();
       dt_ *= controls_.cut_factor;
@@ -71,8 +73,8 @@ StepStats World::step() {
   // After a clean step, let Δt grow back towards g1.
   if (stats.step_cuts == 0) dt_ = std::min(m.g1, dt_ * 1.5);
   stats.contacts = static_cast<int>(contacts_.size());
-  stats.closed_contacts = static_cast<int>(
-      std::count_if(contacts_.begin(), contacts_.end(), [](const Contact& c) { return c.state != ContactState::Open; }));
+  stats.closed_contacts = static_cast<int>(std::count_if(
+      contacts_.begin(), contacts_.end(), [](const Contact& c) { return c.state != ContactState::Open; }));
   stats.t_total = seconds_since(t_start);
   last_stats_ = stats;
   return stats;
@@ -82,12 +84,14 @@ StepStats World::step() {
 void World::save_contact_states() {
   Impl& m = *impl_;
   m.saved_states.resize(contacts_.size());
-  parallel_for_each(contacts_.size(), [&](std::size_t i) { m.saved_states[i] = iteration_state(contacts_[i]); }, 1024);
+  parallel_for_each(
+      contacts_.size(), [&](std::size_t i) { m.saved_states[i] = iteration_state(contacts_[i]); }, 1024);
 }
 
 void World::restore_contact_states() {
   Impl& m = *impl_;
-  parallel_for_each(contacts_.size(), [&](std::size_t i) { set_iteration_state(contacts_[i], m.saved_states[i]); }, 1024);
+  parallel_for_each(
+      contacts_.size(), [&](std::size_t i) { set_iteration_state(contacts_[i], m.saved_states[i]); }, 1024);
 }
 
 // ---- Stage: first-step checks ----------------------------------------------
@@ -119,8 +123,8 @@ void World::prepare_first_step() {
           depth = std::min(depth, (p[i] - (q[j] + t * e)).norm());
         }
         if (depth > 1e-9 * size)
-          throw Error(msg("blocks ", pb_id, " and ", qb_id, " overlap at the start (vertex ", i + 1, " of block ", pb_id,
-                          " lies inside block ", qb_id, ")"));
+          throw Error(msg("blocks ", pb_id, " and ", qb_id, " overlap at the start (vertex ", i + 1, " of block ",
+                          pb_id, " lies inside block ", qb_id, ")"));
       }
     };
     vertex_inside(pa, pb, a, b);
@@ -151,14 +155,15 @@ void World::resolve_controls() {
   require(std::isfinite(c.g1) && c.g1 >= 0, "g1 must be positive (or 0 for automatic), got ", c.g1);
   require(std::isfinite(c.g2) && c.g2 > 0, "g2 must be positive, got ", c.g2);
   require(std::isfinite(c.gg) && c.gg >= 0 && c.gg <= 1, "gg must lie in [0, 1], got ", c.gg);
-  require(std::isfinite(c.shear_ratio) && c.shear_ratio >= 0, "shear ratio must be zero or positive, got ", c.shear_ratio);
+  require(std::isfinite(c.shear_ratio) && c.shear_ratio >= 0, "shear ratio must be zero or positive, got ",
+          c.shear_ratio);
   require(c.open_close_limit >= 1, "open-close limit must be at least 1, got ", c.open_close_limit);
   require(std::isfinite(c.contact_tolerance) && c.contact_tolerance >= 0,
           "contact tolerance must be zero or positive, got ", c.contact_tolerance);
   require(std::isfinite(c.contact_range) && c.contact_range >= 0,
           "contact range must be zero (automatic) or positive, got ", c.contact_range);
-  require(std::isfinite(c.fixed_point_factor) && c.fixed_point_factor > 0,
-          "fixed-point factor must be positive, got ", c.fixed_point_factor);
+  require(std::isfinite(c.fixed_point_factor) && c.fixed_point_factor > 0, "fixed-point factor must be positive, got ",
+          c.fixed_point_factor);
   require(c.gravity.allFinite(), "gravity is not finite");
   require(c.cut_factor > 0 && c.cut_factor < 1, "cut factor must lie in (0, 1), got ", c.cut_factor);
   require(c.max_step_cuts >= 0, "max step cuts must be zero or positive");
@@ -199,7 +204,8 @@ void World::resolve_controls() {
     m.solver.set_preconditioner(make_preconditioner(kind));
     m.preconditioner_kind = kind;
   }
-  if (auto* jacobi = dynamic_cast<BlockJacobi*>(&m.solver.preconditioner())) jacobi->refresh_tolerance = c.jacobi_refresh_tolerance;
+  if (auto* jacobi = dynamic_cast<BlockJacobi*>(&m.solver.preconditioner()))
+    jacobi->refresh_tolerance = c.jacobi_refresh_tolerance;
   m.tan_friction.resize(joints_.size());
   for (std::size_t j = 0; j < joints_.size(); ++j) m.tan_friction[j] = std::tan(deg_to_rad(joints_[j].friction_deg));
   m.solver.max_iterations = c.cg_max_iterations > 0 ? c.cg_max_iterations : static_cast<int>(60 * block_count() + 100);
@@ -229,10 +235,10 @@ bool World::contact_list_is_stale() const {
   if (m.detected_vertices.size() != vertices_.size()) return true;
   const double range = contact_range();
   const double allowed = 0.5 * (kSearchFactor - 1.0) * range;
-  const double moved = parallel_max<double>(vertices_.size(), 0.0, [&](std::size_t v) {
-    return (vertices_[v] - m.detected_vertices[v]).squaredNorm();
-  });
-  const double turned = parallel_max<double>(block_count(), 0.0, [&](std::size_t b) { return std::abs(m.rotation_since_detection[b]); });
+  const double moved = parallel_max<double>(
+      vertices_.size(), 0.0, [&](std::size_t v) { return (vertices_[v] - m.detected_vertices[v]).squaredNorm(); });
+  const double turned =
+      parallel_max<double>(block_count(), 0.0, [&](std::size_t b) { return std::abs(m.rotation_since_detection[b]); });
   return moved > allowed * allowed || turned > kRedetectRotation || m.detected_range != range;
 }
 
@@ -249,7 +255,8 @@ void World::detect_contacts() {
     // Same contacts: refresh their linearisation from the current geometry.
     m.gradients.resize(contacts_.size());
     m.offsets.resize(contacts_.size());
-    parallel_for_each(contacts_.size(), [&](std::size_t i) { contacts_[i].penetration = linearise(i, contacts_[i]).d0; }, 256);
+    parallel_for_each(
+        contacts_.size(), [&](std::size_t i) { contacts_[i].penetration = linearise(i, contacts_[i]).d0; }, 256);
     return;
   }
   const double range = contact_range();
@@ -299,7 +306,12 @@ int World::solve_step(double dt) {
   m.t_assemble += seconds_since(t0);
 
   m.iterate.resize(contacts_.size());
-  parallel_for_each(contacts_.size(), [&](std::size_t i) { m.iterate[i] = {m.offsets[i].s0, contacts_[i].normal_force}; }, 1024);
+  parallel_for_each(
+      contacts_.size(),
+      [&](std::size_t i) {
+        m.iterate[i] = {m.offsets[i].s0, contacts_[i].normal_force};
+      },
+      1024);
   const int n = static_cast<int>(block_count());
   m.solution.resize(6 * n);
   constexpr double kLooseAboveIterations = 30;  // CG iterations per solve in the last step
@@ -312,9 +324,13 @@ int World::solve_step(double dt) {
   // Long solves (quasi-static walls): the previous step's displacements (an
   // earlier trial found extrapolation raised their CG iterations).
   const double gg = controls_.gg;
-  parallel_for_each(n, [&](std::size_t b) {
-    m.solution.segment<6>(6 * b) = long_solves ? last_displacement_[b] : Vec6((1 + gg) * dt * velocity_[b] - last_displacement_[b]);
-  }, 256);
+  parallel_for_each(
+      n,
+      [&](std::size_t b) {
+        m.solution.segment<6>(6 * b) =
+            long_solves ? last_displacement_[b] : Vec6((1 + gg) * dt * velocity_[b] - last_displacement_[b]);
+      },
+      256);
 
   // Start the open-close iteration from the states the warm start predicts
   // (see predict_contact_states); only where it extrapolates motion.
@@ -340,7 +356,8 @@ int World::solve_step(double dt) {
   // Static analysis after long solves accepts cg_static_tolerance (see
   // Controls): there the loose solves' friction lag is the larger error.
   const bool static_long_solves = long_solves && controls_.gg == 0;
-  const double tight = static_long_solves ? std::max(controls_.cg_tolerance, controls_.cg_static_tolerance) : controls_.cg_tolerance;
+  const double tight =
+      static_long_solves ? std::max(controls_.cg_tolerance, controls_.cg_static_tolerance) : controls_.cg_tolerance;
   const double loose = long_solves ? std::max(tight, controls_.cg_open_close_tolerance) : tight;
   // Long solves are dominated by the mat-vec: multiply with stored blocks.
   m.system.store_products(long_solves);
@@ -363,8 +380,8 @@ int World::solve_step(double dt) {
     m.solver.set_operator(m.system);
     // After the first solve only the reassembled rows changed: the solver
     // keeps the last residual elsewhere.
-    const SolveReport report = first_solve ? m.solver.solve(m.rhs, m.solution)
-                                           : m.solver.resolve(m.rhs, m.solution, m.row_reassembled);
+    const SolveReport report =
+        first_solve ? m.solver.solve(m.rhs, m.solution) : m.solver.resolve(m.rhs, m.solution, m.row_reassembled);
     first_solve = false;
     m.cg_iterations += report.iterations;
     m.patch_iterations += report.patch_iterations;
@@ -373,10 +390,11 @@ int World::solve_step(double dt) {
       // Name the first block whose load or displacement is not finite.
       for (int b = 0; b < n; ++b)
         if (!m.rhs.segment<6>(6 * b).allFinite() || !m.solution.segment<6>(6 * b).allFinite())
-          throw Error(msg("step ", steps_ + 1, " at t = ", time_, " s diverged: block ", b,
-                          " has a non-finite ", m.rhs.segment<6>(6 * b).allFinite() ? "displacement" : "load",
+          throw Error(msg("step ", steps_ + 1, " at t = ", time_, " s diverged: block ", b, " has a non-finite ",
+                          m.rhs.segment<6>(6 * b).allFinite() ? "displacement" : "load",
                           " (check material constants, loads, g0 and the time step)"));
-      throw Error(msg("step ", steps_ + 1, " at t = ", time_, " s diverged: the linear solve produced non-finite values"));
+      throw Error(
+          msg("step ", steps_ + 1, " at t = ", time_, " s diverged: the linear solve produced non-finite values"));
     }
     if (!report.converged) return static_cast<int>(Rejection::SolverNotConverged);
 
@@ -450,7 +468,8 @@ void World::assemble_point_terms(double dt) {
     m.own_f[b] += t.transpose() * (k * (goal - at));
   };
 
-  for (const PointLoadHistory& h : point_load_histories_) point_loads_[h.load].force = h.direction * h.magnitude.value(t_end);
+  for (const PointLoadHistory& h : point_load_histories_)
+    point_loads_[h.load].force = h.direction * h.magnitude.value(t_end);
   for (const PointLoad& p : point_loads_) add_force(p.block, p.point, p.force);
 
   // SHI: ∫ Tᵀ(−p n) dl over a straight edge is l·Tᵀ(midpoint)·(−p n).
@@ -458,7 +477,8 @@ void World::assemble_point_terms(double dt) {
     if (load.from_history) load.pressure = load.history.value(t_end);
     for (const EdgeRef& e : load.edges) {
       const Vec2& a = vertices_[vertex_start_[e.block] + e.edge];
-      const Vec2& b = vertices_[vertex_start_[e.block] + (e.edge + 1) % (vertex_start_[e.block + 1] - vertex_start_[e.block])];
+      const Vec2& b =
+          vertices_[vertex_start_[e.block] + (e.edge + 1) % (vertex_start_[e.block + 1] - vertex_start_[e.block])];
       const Vec2 outward((b - a).y(), -(b - a).x());  // length l, outward for a counter-clockwise outline
       add_force(e.block, 0.5 * (a + b), -load.pressure * outward);
     }
@@ -507,58 +527,64 @@ void World::assemble_contacts(bool all_rows) {
   m.rhs.resize(6 * n);
   // The springs each contact acts with in this solve: normal on a closed
   // contact, shear too on a locked one.
-  parallel_for_each(contacts_.size(), [&](std::size_t i) {
-    const Contact& c = contacts_[i];
-    ContactOperator::Springs& k = m.system.springs(static_cast<int>(i));
-    k.kn = c.state == ContactState::Open ? 0.0 : c.scale * kn_full;
-    k.ks = c.state == ContactState::Locked ? c.scale * ks_full : 0.0;
-  }, 1024);
+  parallel_for_each(
+      contacts_.size(),
+      [&](std::size_t i) {
+        const Contact& c = contacts_[i];
+        ContactOperator::Springs& k = m.system.springs(static_cast<int>(i));
+        k.kn = c.state == ContactState::Open ? 0.0 : c.scale * kn_full;
+        k.ks = c.state == ContactState::Locked ? c.scale * ks_full : 0.0;
+      },
+      1024);
   // Each block row is gathered by one task, adding its contacts in contact
   // order: no races, and the same sums whatever the thread count.
   m.row_reassembled.resize(n);
-  parallel_for_each(n, [&](std::size_t bi) {
-    const int b = static_cast<int>(bi);
-    const std::span<const int> row = m.system.row_contacts(b);
-    // A row none of whose contacts changed state since the last assembly of
-    // this step keeps its diagonal block and, without a sliding contact (whose
-    // friction follows the latest N), its right-hand side: either would come
-    // out the same to the bit.
-    bool matrix_too = all_rows, sliding = false;
-    for (std::size_t r = 0; r < row.size() && !matrix_too; ++r) {
-      matrix_too = m.contact_changed[row[r]];
-      sliding = sliding || contacts_[row[r]].state == ContactState::Sliding;
-    }
-    m.row_reassembled[b] = matrix_too || sliding;
-    if (!matrix_too && !sliding) return;
-    Symmetric6 diag = m.own_k[b];
-    Vec6 f = m.own_f[b];
-    for (const int i : row) {
-      const Contact& c = contacts_[i];
-      if (c.state == ContactState::Open) continue;
-      const ContactGradients& k = m.gradients[i];
-      const ContactOperator::Springs& springs = m.system.springs(i);
-      const bool is_vertex_block = c.vblock == b;
-      const Vec6& en_self = is_vertex_block ? k.en_v : k.en_e;
-      const Vec6& es_self = is_vertex_block ? k.es_v : k.es_e;
-      // Normal spring on dn = d0 + en·D (and, locked, shear spring on
-      // ds = s0 + es·D): kn·en enᵀ (+ ks·es esᵀ) on the diagonal (its upper
-      // triangle); the coupling to the other block stays with the operator
-      // (assembly/contact_operator.hpp).
-      if (matrix_too) diag.add_outer(springs.kn, en_self);
-      f -= springs.kn * m.offsets[i].d0 * en_self;
-      if (c.state == ContactState::Locked) {
-        if (matrix_too) diag.add_outer(springs.ks, es_self);
-        f -= springs.ks * m.iterate[i].s0 * es_self;
-      } else {
-        // Sliding: friction N·tanφ against the sliding direction, with N
-        // from the previous iteration.
-        const double friction = std::max(0.0, m.iterate[i].normal_force) * m.tan_friction[c.joint];
-        f -= c.slide_sign * friction * es_self;
-      }
-    }
-    m.rhs.segment<6>(6 * b) = f;
-    if (matrix_too) m.system.rewrite_diagonal(b) = diag;
-  }, 16);
+  parallel_for_each(
+      n,
+      [&](std::size_t bi) {
+        const int b = static_cast<int>(bi);
+        const std::span<const int> row = m.system.row_contacts(b);
+        // A row none of whose contacts changed state since the last assembly of
+        // this step keeps its diagonal block and, without a sliding contact (whose
+        // friction follows the latest N), its right-hand side: either would come
+        // out the same to the bit.
+        bool matrix_too = all_rows, sliding = false;
+        for (std::size_t r = 0; r < row.size() && !matrix_too; ++r) {
+          matrix_too = m.contact_changed[row[r]];
+          sliding = sliding || contacts_[row[r]].state == ContactState::Sliding;
+        }
+        m.row_reassembled[b] = matrix_too || sliding;
+        if (!matrix_too && !sliding) return;
+        Symmetric6 diag = m.own_k[b];
+        Vec6 f = m.own_f[b];
+        for (const int i : row) {
+          const Contact& c = contacts_[i];
+          if (c.state == ContactState::Open) continue;
+          const ContactGradients& k = m.gradients[i];
+          const ContactOperator::Springs& springs = m.system.springs(i);
+          const bool is_vertex_block = c.vblock == b;
+          const Vec6& en_self = is_vertex_block ? k.en_v : k.en_e;
+          const Vec6& es_self = is_vertex_block ? k.es_v : k.es_e;
+          // Normal spring on dn = d0 + en·D (and, locked, shear spring on
+          // ds = s0 + es·D): kn·en enᵀ (+ ks·es esᵀ) on the diagonal (its upper
+          // triangle); the coupling to the other block stays with the operator
+          // (assembly/contact_operator.hpp).
+          if (matrix_too) diag.add_outer(springs.kn, en_self);
+          f -= springs.kn * m.offsets[i].d0 * en_self;
+          if (c.state == ContactState::Locked) {
+            if (matrix_too) diag.add_outer(springs.ks, es_self);
+            f -= springs.ks * m.iterate[i].s0 * es_self;
+          } else {
+            // Sliding: friction N·tanφ against the sliding direction, with N
+            // from the previous iteration.
+            const double friction = std::max(0.0, m.iterate[i].normal_force) * m.tan_friction[c.joint];
+            f -= c.slide_sign * friction * es_self;
+          }
+        }
+        m.rhs.segment<6>(6 * b) = f;
+        if (matrix_too) m.system.rewrite_diagonal(b) = diag;
+      },
+      16);
   m.system.set_kinematics(m.gradients);
   m.system.assembled();
 }
@@ -611,21 +637,24 @@ ContactSprings contact_springs(const Contact& c, double g0, double shear_ratio, 
 void World::predict_contact_states() {
   Impl& m = *impl_;
   const double tolerance = controls_.contact_tolerance * half_height_;
-  parallel_for_each(contacts_.size(), [&](std::size_t i) {
-    Contact& c = contacts_[i];
-    if (c.intact) return;
-    const ContactIterationState before = iteration_state(c);
-    const ContactIterate iterate = m.iterate[i];
-    const ContactMotion d = contact_motion(m.gradients[i], m.offsets[i], m.solution, c);
-    const ContactSprings springs = contact_springs(c, m.g0, controls_.shear_ratio, tolerance);
-    update_contact_state(c, m.iterate[i], joints_[c.joint], m.tan_friction[c.joint], springs, d.dn, iterate.s0 + d.ds_step,
-                         d.ds_step);
-    if (before.state != ContactState::Open && c.state == ContactState::Open) {
-      set_iteration_state(c, before);
-      m.iterate[i] = iterate;
-    }
-    m.iterate[i].normal_force = iterate.normal_force;
-  }, 1024);
+  parallel_for_each(
+      contacts_.size(),
+      [&](std::size_t i) {
+        Contact& c = contacts_[i];
+        if (c.intact) return;
+        const ContactIterationState before = iteration_state(c);
+        const ContactIterate iterate = m.iterate[i];
+        const ContactMotion d = contact_motion(m.gradients[i], m.offsets[i], m.solution, c);
+        const ContactSprings springs = contact_springs(c, m.g0, controls_.shear_ratio, tolerance);
+        update_contact_state(c, m.iterate[i], joints_[c.joint], m.tan_friction[c.joint], springs, d.dn,
+                             iterate.s0 + d.ds_step, d.ds_step);
+        if (before.state != ContactState::Open && c.state == ContactState::Open) {
+          set_iteration_state(c, before);
+          m.iterate[i] = iterate;
+        }
+        m.iterate[i].normal_force = iterate.normal_force;
+      },
+      1024);
 }
 
 bool World::check_contacts() {
@@ -638,7 +667,8 @@ bool World::check_contacts() {
     const ContactSprings springs = contact_springs(c, m.g0, controls_.shear_ratio, tolerance);
     const auto [dn, ds_step] = contact_motion(m.gradients[i], m.offsets[i], m.solution, c);
     const double ds = m.iterate[i].s0 + ds_step;
-    const bool changed = update_contact_state(c, m.iterate[i], joints_[c.joint], m.tan_friction[c.joint], springs, dn, ds, ds_step);
+    const bool changed =
+        update_contact_state(c, m.iterate[i], joints_[c.joint], m.tan_friction[c.joint], springs, dn, ds, ds_step);
     m.contact_changed[i] = changed;
     c.penetration = dn;
     c.normal_force = m.iterate[i].normal_force;
@@ -713,36 +743,43 @@ void World::update(double dt) {
   }
 
   const double gg = controls_.gg;
-  parallel_for_each(n, [&](std::size_t b) {
-    const Vec6 d = d_of(static_cast<BlockId>(b));
-    // The vertices' motion as the accepted solve's checks computed it.
-    for (int v = vertex_start_[b]; v < vertex_start_[b + 1]; ++v) vertices_[v] += m.vertex_motion[v];
-    const PolygonMoments pm = polygon_moments(std::span<const Vec2>(vertices_).subspan(vertex_start_[b], vertex_start_[b + 1] - vertex_start_[b]));
-    centroid_[b] = pm.centroid;
-    area_[b] = pm.area;
-    sxx_[b] = pm.sxx;
-    syy_[b] = pm.syy;
-    sxy_[b] = pm.sxy;
-    stress_[b] += m.elastic[material_[b]] * d.tail<3>();
-    // v1 = 2d/Δt - v0 (exact for constant acceleration).
-    velocity_[b] = 2.0 / dt * d - gg * velocity_[b];
-    last_displacement_[b] = d;
-    m.rotation_since_detection[b] += d[2];
-  }, 32);
+  parallel_for_each(
+      n,
+      [&](std::size_t b) {
+        const Vec6 d = d_of(static_cast<BlockId>(b));
+        // The vertices' motion as the accepted solve's checks computed it.
+        for (int v = vertex_start_[b]; v < vertex_start_[b + 1]; ++v) vertices_[v] += m.vertex_motion[v];
+        const PolygonMoments pm = polygon_moments(
+            std::span<const Vec2>(vertices_).subspan(vertex_start_[b], vertex_start_[b + 1] - vertex_start_[b]));
+        centroid_[b] = pm.centroid;
+        area_[b] = pm.area;
+        sxx_[b] = pm.sxx;
+        syy_[b] = pm.syy;
+        sxy_[b] = pm.sxy;
+        stress_[b] += m.elastic[material_[b]] * d.tail<3>();
+        // v1 = 2d/Δt - v0 (exact for constant acceleration).
+        velocity_[b] = 2.0 / dt * d - gg * velocity_[b];
+        last_displacement_[b] = d;
+        m.rotation_since_detection[b] += d[2];
+      },
+      32);
 
   // Contacts: a contact that ends the step locked keeps (or takes) its shear
   // reference point; others drop it.
-  parallel_for_each(contacts_.size(), [&](std::size_t i) {
-    Contact& c = contacts_[i];
-    if (c.state == ContactState::Locked) {
-      if (!c.ref_valid || m.iterate[i].s0 != m.offsets[i].s0) {
-        c.ref_param = m.offsets[i].param;
-        c.ref_valid = true;
-      }
-    } else {
-      c.ref_valid = false;
-    }
-  }, 256);
+  parallel_for_each(
+      contacts_.size(),
+      [&](std::size_t i) {
+        Contact& c = contacts_[i];
+        if (c.state == ContactState::Locked) {
+          if (!c.ref_valid || m.iterate[i].s0 != m.offsets[i].s0) {
+            c.ref_param = m.offsets[i].param;
+            c.ref_valid = true;
+          }
+        } else {
+          c.ref_valid = false;
+        }
+      },
+      256);
   time_ += dt;
   ++steps_;
 }

@@ -94,8 +94,8 @@ struct Controls {
   // where a loose open-close solve stops (which friction's normal force
   // sees), not the tolerance reached; 0: invert every rewritten block anew.
   double jacobi_refresh_tolerance = 1e-4;
-  int cg_max_iterations = 0;        // 0 → 10 × unknowns + 100
-  int threads = 0;                  // 0 → every core
+  int cg_max_iterations = 0;  // 0 → 10 × unknowns + 100
+  int threads = 0;            // 0 → every core
 };
 
 // An edge of a block: from vertex `edge` to `edge + 1` (counter-clockwise).
@@ -110,13 +110,13 @@ enum class BoundaryKind { Viscous, Spring };
 struct StepStats {
   double dt = 0;
   int open_close_iterations = 0;
-  int cg_iterations = 0;      // over all rows
-  int patch_iterations = 0;   // confined to the patch of a re-solve (Controls::patch_hops)
+  int cg_iterations = 0;     // over all rows
+  int patch_iterations = 0;  // confined to the patch of a re-solve (Controls::patch_hops)
   int step_cuts = 0;
   std::string cut_reason;  // why the last cut was made ("" when none), with the block when one is to blame
   int contacts = 0;
   int closed_contacts = 0;
-  bool contacts_searched = false;  // a full contact search ran (else the list was reused)
+  bool contacts_searched = false;     // a full contact search ran (else the list was reused)
   double max_displacement_ratio = 0;  // largest vertex displacement / (g2 bound)
   double t_detect = 0, t_assemble = 0, t_solve = 0, t_check = 0, t_update = 0, t_total = 0;
 };
@@ -176,11 +176,11 @@ class World {
   // start + target. With a direction (normalised) it acts along it only and
   // the target is a magnitude along it; with a zero direction it acts in both.
   int add_displacement_target(BlockId b, const Vec2& point, const Vec2& direction = Vec2::Zero());
-  void set_target_displacement(int id, const Vec2& target);  // along a direction: target.x() is the magnitude
+  void set_target_displacement(int id, const Vec2& target);    // along a direction: target.x() is the magnitude
   void set_target_history(int id, History displacement);       // magnitude along the direction
   void set_target_velocity_history(int id, History velocity);  // integrated to displacement
   Vec2 target_point_displacement(int id) const;                // the material point's displacement so far
-  Vec2 target_value(int id) const;                            // the last target applied (vector)
+  Vec2 target_value(int id) const;                             // the last target applied (vector)
 
   // Fixed boundary: fixed points at both ends of each edge.
   void fix_edges(const std::vector<EdgeRef>& edges);
@@ -218,7 +218,7 @@ class World {
   double block_area(BlockId b) const { return area_[check(b)]; }
   double block_mass(BlockId b) const { return mass_[check(b)]; }
   int block_material(BlockId b) const { return material_[check(b)]; }
-  Vec3 block_stress(BlockId b) const { return stress_[check(b)]; }  // (σxx, σyy, τxy), tension +
+  Vec3 block_stress(BlockId b) const { return stress_[check(b)]; }      // (σxx, σyy, τxy), tension +
   Vec6 block_velocity(BlockId b) const { return velocity_[check(b)]; }  // rates of (u0,v0,r0,εx,εy,γxy)
   Vec2 velocity_at(BlockId b, const Vec2& p) const;
   // Displacement of the block's centroid since the start (or since it was added).
@@ -242,17 +242,18 @@ class World {
   BlockId check(BlockId b) const;
 
   // The stages of step(), in order (world/step.cpp).
-  void prepare_first_step();      // validate the model once: materials, overlaps, g2 length
-  void resolve_controls();        // validate controls, fill in automatic g0 and g1
-  void detect_contacts();         // broad + narrow phase, carry states, linearise, matrix shape
+  void prepare_first_step();  // validate the model once: materials, overlaps, g2 length
+  void resolve_controls();    // validate controls, fill in automatic g0 and g1
+  void detect_contacts();     // broad + narrow phase, carry states, linearise, matrix shape
   bool contact_list_is_stale() const;
   void save_contact_states();     // the contacts' iteration state at the start of a step
   void restore_contact_states();  // back to it, for a redo
   double contact_range() const;
-  int solve_step(double dt);      // loop { assemble, solve, check contacts }; 0 or a rejection
+  int solve_step(double dt);             // loop { assemble, solve, check contacts }; 0 or a rejection
   void assemble_block_terms(double dt);  // elastic, inertia, stress, gravity per block
   void assemble_point_terms(double dt);  // loads, fixed points, targets, boundaries at t + Δt
-  void assemble_contacts(bool all_rows);  // block terms + contact springs and friction (all rows, or those whose contacts changed)
+  void assemble_contacts(
+      bool all_rows);  // block terms + contact springs and friction (all rows, or those whose contacts changed)
   void predict_contact_states();  // the open-close iteration's first guess, from the warm start
   bool check_contacts();          // open-close decision; true when a contact changed
   // The solve's block motions, in one pass over the vertices: the largest
@@ -260,7 +261,7 @@ class World {
   // zero or negative area (-1: none). Keeps each vertex's motion for update().
   std::pair<double, BlockId> check_block_motion();
   double deepest_penetration() const;
-  void update(double dt);         // move vertices, stresses, velocities, contacts; advance time
+  void update(double dt);  // move vertices, stresses, velocities, contacts; advance time
 
   Controls controls_;
   std::vector<RockMaterial> rocks_;
@@ -270,7 +271,7 @@ class World {
   std::vector<int> vertex_start_;  // block b owns vertices_[vertex_start_[b] .. vertex_start_[b+1])
   std::vector<Vec2> vertices_;
   std::vector<Vec2> initial_vertices_;  // parallel to vertices_: where each vertex started (cold)
-  std::vector<int> edge_joint_;    // parallel to vertices_: joint of edge k → k+1
+  std::vector<int> edge_joint_;         // parallel to vertices_: joint of edge k → k+1
   std::vector<Vec2> centroid_, initial_centroid_;
   std::vector<double> area_, sxx_, syy_, sxy_, mass_;
   std::vector<int> material_;
@@ -279,19 +280,55 @@ class World {
   std::vector<Vec6> last_displacement_;  // previous step's solution: the PCG warm start
 
   // Loads and constraints attached to material points.
-  struct PointLoad { BlockId block; Vec2 point; Vec2 force; };
-  struct FixedPoint { BlockId block; Vec2 point; Vec2 origin; };
-  struct TrackedPoint { BlockId block; Vec2 point; Vec2 origin; };
-  struct PressureLoad { std::vector<EdgeRef> edges; double pressure; History history; bool from_history; };
-  struct PointLoadHistory { int load; Vec2 direction; History magnitude; };
+  struct PointLoad {
+    BlockId block;
+    Vec2 point;
+    Vec2 force;
+  };
+  struct FixedPoint {
+    BlockId block;
+    Vec2 point;
+    Vec2 origin;
+  };
+  struct TrackedPoint {
+    BlockId block;
+    Vec2 point;
+    Vec2 origin;
+  };
+  struct PressureLoad {
+    std::vector<EdgeRef> edges;
+    double pressure;
+    History history;
+    bool from_history;
+  };
+  struct PointLoadHistory {
+    int load;
+    Vec2 direction;
+    History magnitude;
+  };
   struct DisplacementTarget {
-    BlockId block; Vec2 point; Vec2 origin; Vec2 direction;  // zero direction: both components
+    BlockId block;
+    Vec2 point;
+    Vec2 origin;
+    Vec2 direction;              // zero direction: both components
     Vec2 target = Vec2::Zero();  // current target (vector)
-    History history; enum { Fixed, Displacement, Velocity } mode = Fixed;
+    History history;
+    enum { Fixed, Displacement, Velocity } mode = Fixed;
   };
   // A VBC dashpot (matrix c, N·s/m) or an SBC spring (stiffness k, N/m) at a material point.
-  struct BoundaryPoint { int boundary; BlockId block; Vec2 point; Vec2 origin; Eigen::Matrix2d c; double k; Vec2 force; };
-  struct Boundary { BoundaryKind kind; int first, count; };
+  struct BoundaryPoint {
+    int boundary;
+    BlockId block;
+    Vec2 point;
+    Vec2 origin;
+    Eigen::Matrix2d c;
+    double k;
+    Vec2 force;
+  };
+  struct Boundary {
+    BoundaryKind kind;
+    int first, count;
+  };
   std::vector<PressureLoad> pressure_loads_;
   std::vector<PointLoadHistory> point_load_histories_;
   std::vector<DisplacementTarget> targets_;
@@ -308,7 +345,7 @@ class World {
   long steps_ = 0;
   double dt_ = 0;
   double half_height_ = 0;
-  double auto_range_ = 0;   // the automatic contact range so far (only widens)
+  double auto_range_ = 0;  // the automatic contact range so far (only widens)
   bool prepared_ = false;
   StepStats last_stats_;
   std::unique_ptr<Impl> impl_;  // scratch buffers reused from step to step

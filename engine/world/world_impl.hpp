@@ -20,17 +20,32 @@ using Clock = std::chrono::steady_clock;
 inline double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
 
 // Why a step attempt was rejected (the step is then redone with a smaller Δt).
-enum class Rejection : int { None, OpenCloseUnsettled, DisplacementTooLarge, PenetrationTooDeep, SolverNotConverged, BlockInverted, BeyondContactRange };
+enum class Rejection : int {
+  None,
+  OpenCloseUnsettled,
+  DisplacementTooLarge,
+  PenetrationTooDeep,
+  SolverNotConverged,
+  BlockInverted,
+  BeyondContactRange
+};
 
 inline const char* describe(Rejection r) {
   switch (r) {
-    case Rejection::None: return "accepted";
-    case Rejection::OpenCloseUnsettled: return "the open-close iteration did not settle";
-    case Rejection::DisplacementTooLarge: return "a vertex moved more than the g2 bound in one step";
-    case Rejection::PenetrationTooDeep: return "a contact penetrated deeper than the g2 bound";
-    case Rejection::SolverNotConverged: return "the linear solver did not converge";
-    case Rejection::BlockInverted: return "a block would turn inside out (its area would become zero or negative)";
-    case Rejection::BeyondContactRange: return "a vertex moved more than the contact range allows in one step (range / 2.5)";
+    case Rejection::None:
+      return "accepted";
+    case Rejection::OpenCloseUnsettled:
+      return "the open-close iteration did not settle";
+    case Rejection::DisplacementTooLarge:
+      return "a vertex moved more than the g2 bound in one step";
+    case Rejection::PenetrationTooDeep:
+      return "a contact penetrated deeper than the g2 bound";
+    case Rejection::SolverNotConverged:
+      return "the linear solver did not converge";
+    case Rejection::BlockInverted:
+      return "a block would turn inside out (its area would become zero or negative)";
+    case Rejection::BeyondContactRange:
+      return "a vertex moved more than the contact range allows in one step (range / 2.5)";
   }
   return "?";
 }
@@ -46,9 +61,9 @@ struct World::Impl {
   PcgSolver solver;
   std::optional<Preconditioning> preconditioner_kind;
   VecX rhs, solution;
-  std::vector<Symmetric6> own_k;  // block terms of the diagonal (elastic, inertia, fixed points)
-  std::vector<Vec6> own_f;  // block terms of the right-hand side
-  std::vector<Mat3> elastic;  // per rock material
+  std::vector<Symmetric6> own_k;     // block terms of the diagonal (elastic, inertia, fixed points)
+  std::vector<Vec6> own_f;           // block terms of the right-hand side
+  std::vector<Mat3> elastic;         // per rock material
   std::vector<double> tan_friction;  // tan φ per joint material (the contact law needs it per contact)
 
   // Per contact, parallel to World::contacts_.
@@ -66,7 +81,8 @@ struct World::Impl {
   double detected_range = 0;
   long detections = 0;
   Rejection last_rejection = Rejection::None;
-  double largest_displacement = 0;  // of the last solve's vertices (the step's g2 ratio; widens the automatic contact range)
+  double largest_displacement =
+      0;  // of the last solve's vertices (the step's g2 ratio; widens the automatic contact range)
   BlockId inverted_block = -1;  // the first block the last rejected attempt would have turned inside out
   // check_block_motion's: per block, whether its outline turned inside out;
   // per vertex, its motion in the solve (what update() adds once the step is
@@ -77,6 +93,5 @@ struct World::Impl {
   int open_close_iterations = 0, cg_iterations = 0, patch_iterations = 0;
   double t_assemble = 0, t_solve = 0, t_check = 0;
 };
-
 
 }  // namespace dda

@@ -1,14 +1,14 @@
 #include "frame/renderer.hpp"
 
-#include <GL/osmesa.h>
 #include <GL/gl.h>
+#include <GL/osmesa.h>
 
 #include <algorithm>
 #include <array>
 #include <atomic>
 #include <cmath>
-#include <cstdlib>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <limits>
 #include <string_view>
@@ -126,7 +126,8 @@ Plan make_plan(const Scene& scene, const FrameOptions& o) {
   if (panel_w > 0) panel_w += m;
 
   L.model = {m, top, o.width - 2 * m - panel_w, o.height - top - m};
-  if (L.model.w < 8 || L.model.h < 8) throw Error(msg("frame ", o.width, "x", o.height, " is too small for its colour bar and text"));
+  if (L.model.w < 8 || L.model.h < 8)
+    throw Error(msg("frame ", o.width, "x", o.height, " is too small for its colour bar and text"));
   p.panel = {L.model.right() + m, top, panel_w - m, L.model.h};
 
   int ramp_bottom = p.panel.bottom();
@@ -137,7 +138,8 @@ Plan make_plan(const Scene& scene, const FrameOptions& o) {
   }
   if (bar) {
     const int ramp_top = top + 2 * th + m / 2;
-    L.colorbar = {p.panel.x, ramp_top, static_cast<int>(std::lround(p.text * 1.1)), std::max(2, ramp_bottom - ramp_top - th / 2)};
+    L.colorbar = {p.panel.x, ramp_top, static_cast<int>(std::lround(p.text * 1.1)),
+                  std::max(2, ramp_bottom - ramp_top - th / 2)};
   }
 
   L.view = square_pixels(o.view ? *o.view : fit_view(scene, o.magnify), L.model);
@@ -166,8 +168,10 @@ void FrameOptions::validate() const {
                     "] must be finite with min < max"));
   if (!std::isfinite(magnify)) throw Error(msg("magnify = ", magnify, " must be finite"));
   if (!(edge_width > 0 && edge_width <= 16)) throw Error(msg("edge width ", edge_width, " must be in (0, 16] pixels"));
-  if (!(contact_size > 0 && contact_size <= 32)) throw Error(msg("contact size ", contact_size, " must be in (0, 32] pixels"));
-  if (!(arrow_scale >= 0) || !std::isfinite(arrow_scale)) throw Error(msg("arrow scale ", arrow_scale, " must be >= 0"));
+  if (!(contact_size > 0 && contact_size <= 32))
+    throw Error(msg("contact size ", contact_size, " must be in (0, 32] pixels"));
+  if (!(arrow_scale >= 0) || !std::isfinite(arrow_scale))
+    throw Error(msg("arrow scale ", arrow_scale, " must be >= 0"));
 }
 
 struct Renderer::Impl {
@@ -195,8 +199,9 @@ struct Renderer::Impl {
     if (!ctx) {
       ctx = OSMesaCreateContextExt(OSMESA_RGBA, 0, 0, 0, nullptr);
       if (!ctx)
-        throw Error("cannot create an off-screen OpenGL context: OSMesaCreateContextExt failed "
-                    "(is Mesa's libOSMesa with llvmpipe installed?)");
+        throw Error(
+            "cannot create an off-screen OpenGL context: OSMesaCreateContextExt failed "
+            "(is Mesa's libOSMesa with llvmpipe installed?)");
     }
     if (w != bw || h != bh) {
       rgba.assign(static_cast<std::size_t>(w) * h * 4, 0);
@@ -257,7 +262,9 @@ void Renderer::Impl::draw_gl(const Scene& scene, const FrameOptions& o, const Pl
     double vmax = 0;
     for (const Vec2& v : scene.velocity)
       if (v.allFinite()) vmax = std::max(vmax, v.norm());
-    const double scale = o.arrow_scale > 0 ? o.arrow_scale : vmax > 0 ? 0.06 * std::min(L.view.width(), L.view.height()) / vmax : 0;
+    const double scale = o.arrow_scale > 0 ? o.arrow_scale
+                         : vmax > 0        ? 0.06 * std::min(L.view.width(), L.view.height()) / vmax
+                                           : 0;
     const double px = L.view.width() / L.model.w;  // metres per pixel
     for (std::size_t b = 0; b < n && scale > 0; ++b) {
       const Vec2 v = scene.velocity[b];
@@ -329,7 +336,8 @@ void Renderer::Impl::draw_gl(const Scene& scene, const FrameOptions& o, const Pl
   }
   glDisableClientState(GL_VERTEX_ARRAY);
   glFinish();
-  if (const GLenum err = glGetError(); err != GL_NO_ERROR) throw Error(msg("OpenGL error 0x", std::hex, err, " while drawing a frame"));
+  if (const GLenum err = glGetError(); err != GL_NO_ERROR)
+    throw Error(msg("OpenGL error 0x", std::hex, err, " while drawing a frame"));
 }
 
 // Neighbouring blocks share edges, so most edges come twice. llvmpipe pays
@@ -459,7 +467,8 @@ void draw_overlay(Image& img, const Scene& scene, const FrameOptions& o, const P
         // White halo for legibility over any colour.
         for (int dy = -1; dy <= 1; ++dy)
           for (int dx = -1; dx <= 1; ++dx)
-            if (dx || dy) draw_text(img, tx + dx, ty + dy, mk.name, {p.text * 0.85f, {255, 255, 255}, Align::Start, Align::End});
+            if (dx || dy)
+              draw_text(img, tx + dx, ty + dy, mk.name, {p.text * 0.85f, {255, 255, 255}, Align::Start, Align::End});
         draw_text(img, tx, ty, mk.name, {p.text * 0.85f, kTextColor, Align::Start, Align::End});
       }
     }

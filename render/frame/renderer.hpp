@@ -42,19 +42,19 @@ struct FrameOptions {
   // (current − initial). Needs Scene::initial_vertices when ≠ 1.
   double magnify = 1;
 
-  bool show_edges = true;       // block outlines (joints) as thin lines
-  double edge_width = 1;        // pixels
+  bool show_edges = true;  // block outlines (joints) as thin lines
+  double edge_width = 1;   // pixels
   Rgb edge_color{40, 40, 40};
-  bool show_contacts = false;   // contact vertices: open white, sliding magenta, locked black
-  double contact_size = 4;      // marker size (pixels)
-  bool show_monitors = true;    // monitor points with their names
-  bool show_velocity = false;   // velocity arrows at block centroids
-  double arrow_scale = 0;       // arrow length (m) per (m/s); 0 → longest arrow = 6 % of the view
-  bool show_colorbar = true;    // colour bar with ticks, field name and unit
-  bool show_info = true;        // top line: title or field, simulated time, step
-  std::string title;            // replaces the field description on the top line
+  bool show_contacts = false;  // contact vertices: open white, sliding magenta, locked black
+  double contact_size = 4;     // marker size (pixels)
+  bool show_monitors = true;   // monitor points with their names
+  bool show_velocity = false;  // velocity arrows at block centroids
+  double arrow_scale = 0;      // arrow length (m) per (m/s); 0 → longest arrow = 6 % of the view
+  bool show_colorbar = true;   // colour bar with ticks, field name and unit
+  bool show_info = true;       // top line: title or field, simulated time, step
+  std::string title;           // replaces the field description on the top line
   Rgb background{255, 255, 255};
-  int supersample = 1;          // 1..4: draw at k× size and average k×k pixels (smoother edges)
+  int supersample = 1;  // 1..4: draw at k× size and average k×k pixels (smoother edges)
 
   // Throws dda::Error naming the bad option.
   void validate() const;
@@ -77,9 +77,7 @@ struct FrameLayout {
             model.y + (view.ymax - world.y()) / view.height() * model.h};
   }
   // Colour the frame uses for a value (SI) of its field.
-  Rgb color_of(double value) const {
-    return color_at(colormap, (value - range.min) / (range.max - range.min));
-  }
+  Rgb color_of(double value) const { return color_at(colormap, (value - range.min) / (range.max - range.min)); }
 };
 
 struct Frame {

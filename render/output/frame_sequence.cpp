@@ -2,8 +2,8 @@
 
 #include <unistd.h>
 
-#include <cerrno>
 #include <algorithm>
+#include <cerrno>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -18,12 +18,12 @@ SequenceOptions validated(SequenceOptions o) {
   if (o.every_steps < 0) throw Error(msg("frame sequence: every_steps = ", o.every_steps, " must be >= 0"));
   if (!(o.every_time >= 0) || !std::isfinite(o.every_time))
     throw Error(msg("frame sequence: every_time = ", o.every_time, " s must be >= 0"));
-  if (o.every_steps > 0 && o.every_time > 0)
-    throw Error("frame sequence: give every_steps or every_time, not both");
+  if (o.every_steps > 0 && o.every_time > 0) throw Error("frame sequence: give every_steps or every_time, not both");
   if (o.digits < 1 || o.digits > 9) throw Error(msg("frame sequence: digits = ", o.digits, " must be 1 .. 9"));
   if (o.queue_capacity < 1) throw Error("frame sequence: the queue capacity must be at least 1");
   if (o.prefix.find('/') != std::string::npos)
-    throw Error(msg("frame sequence: prefix '", o.prefix, "' must be a file name stem (no '/'); put folders in 'folder'"));
+    throw Error(
+        msg("frame sequence: prefix '", o.prefix, "' must be a file name stem (no '/'); put folders in 'folder'"));
   if (o.prefix.empty()) o.prefix = o.frame.field == Field::None ? "frame" : field_info(o.frame.field).key;
   o.frame.validate();
   if (!o.warn) o.warn = [](const std::string& m) { std::fprintf(stderr, "warning: %s\n", m.c_str()); };
@@ -53,7 +53,8 @@ std::filesystem::path FrameSequence::frame_path(int index) const {
 
 bool FrameSequence::due(long step, double time) const {
   if (!active_ || step == last_step_) return false;
-  if (options_.every_steps > 0) return last_step_ < 0 || step >= (last_step_ / options_.every_steps + 1) * options_.every_steps;
+  if (options_.every_steps > 0)
+    return last_step_ < 0 || step >= (last_step_ / options_.every_steps + 1) * options_.every_steps;
   if (options_.every_time > 0) return time >= next_time_ - 1e-9 * options_.every_time;
   return true;
 }

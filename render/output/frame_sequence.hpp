@@ -41,20 +41,20 @@ enum class OnError {
 
 struct SequenceOptions {
   std::filesystem::path folder = "out/frames";
-  std::string prefix;       // file name stem; empty → the field key ("sigma_yy"; "frame" for none)
-  long every_steps = 0;     // a frame when step_count % every_steps == 0
-  double every_time = 0;    // a frame each time simulated time passes a multiple of every_time (s)
-                            // (neither set → a frame at every call; both set → dda::Error)
-  FrameOptions frame;       // what each frame shows
+  std::string prefix;     // file name stem; empty → the field key ("sigma_yy"; "frame" for none)
+  long every_steps = 0;   // a frame when step_count % every_steps == 0
+  double every_time = 0;  // a frame each time simulated time passes a multiple of every_time (s)
+                          // (neither set → a frame at every call; both set → dda::Error)
+  FrameOptions frame;     // what each frame shows
   // Without frame.range: when set, the colour range only ever widens over the
   // sequence (the union of every frame's own range so far), so a colour keeps
   // its meaning from frame to frame in a video. Otherwise each frame has its own.
   bool grow_range = false;
-  int digits = 5;           // zero-padded width of the index
+  int digits = 5;                  // zero-padded width of the index
   std::size_t queue_capacity = 4;  // frames waiting for the worker before the caller waits
   OnError on_error = OnError::Stop;
   std::function<void(const std::string&)> warn;  // for OnError::Continue; default prints to stderr
-  bool with_contacts = true;  // copy contacts into the scene (only drawn if frame.show_contacts)
+  bool with_contacts = true;                     // copy contacts into the scene (only drawn if frame.show_contacts)
 };
 
 class FrameSequence {
@@ -79,10 +79,10 @@ class FrameSequence {
   // Waits for every queued frame to be written; reports errors per on_error.
   void flush();
 
-  bool active() const { return active_; }              // false after an error under OnError::Continue
+  bool active() const { return active_; }  // false after an error under OnError::Continue
   const std::string& last_error() const { return last_error_; }
   int frame_count() const { return next_index_; }     // frames captured so far
-  std::filesystem::path frame_path(int index) const;   // file of frame `index`
+  std::filesystem::path frame_path(int index) const;  // file of frame `index`
   const SequenceOptions& options() const { return options_; }
   // For monitors and the start of the motion (record_initial before the first step).
   WorldSnapshot& snapshot() { return snapshot_; }

@@ -20,7 +20,9 @@ struct FrameWriter::Impl {
     std::function<void(std::optional<Renderer>&)> run;
   };
 
-  explicit Impl(std::size_t capacity) : capacity(capacity) { worker = std::thread([this] { loop(); }); }
+  explicit Impl(std::size_t capacity) : capacity(capacity) {
+    worker = std::thread([this] { loop(); });
+  }
 
   ~Impl() {
     {
@@ -60,7 +62,8 @@ struct FrameWriter::Impl {
       {
         std::unique_lock lock(mutex);
         busy = false;
-        if (error.empty()) ++n_written;
+        if (error.empty())
+          ++n_written;
         else {
           ++n_failed;
           if (unreported++ == 0) first_error = error;
@@ -117,10 +120,11 @@ void FrameWriter::write_frame(Scene scene, FrameOptions options, std::filesystem
   options.validate();
   scene.validate();
   auto p = path;
-  impl_->submit({std::move(path), [scene = std::move(scene), options = std::move(options), p](std::optional<Renderer>& r) {
-                   if (!r) r.emplace();
-                   r->render_to_png(scene, options, p);
-                 }});
+  impl_->submit(
+      {std::move(path), [scene = std::move(scene), options = std::move(options), p](std::optional<Renderer>& r) {
+         if (!r) r.emplace();
+         r->render_to_png(scene, options, p);
+       }});
 }
 
 void FrameWriter::write_image(Image image, std::filesystem::path path) {

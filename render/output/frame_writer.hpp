@@ -23,7 +23,7 @@ namespace dda::render {
 class FrameWriter {
  public:
   explicit FrameWriter(std::size_t queue_capacity = 4);  // capacity >= 1
-  ~FrameWriter();  // finishes every queued job, then joins the worker
+  ~FrameWriter();                                        // finishes every queued job, then joins the worker
   FrameWriter(const FrameWriter&) = delete;
   FrameWriter& operator=(const FrameWriter&) = delete;
 
@@ -38,10 +38,10 @@ class FrameWriter {
   // Waits until every queued job is done, then throws the pending error, if any.
   void flush();
 
-  std::size_t pending() const;    // queued or in progress
-  std::size_t written() const;    // files written so far
-  std::size_t failed() const;     // jobs that failed so far
-  double blocked_seconds() const; // time callers spent waiting for queue space
+  std::size_t pending() const;     // queued or in progress
+  std::size_t written() const;     // files written so far
+  std::size_t failed() const;      // jobs that failed so far
+  double blocked_seconds() const;  // time callers spent waiting for queue space
 
  private:
   struct Impl;

@@ -16,7 +16,7 @@ constexpr Rgb kGrid{225, 225, 225};
 constexpr Rgb kText{20, 20, 20};
 
 // Tableau 10: distinct, and readable by most colour-blind viewers.
-constexpr Rgb kPalette[10] = {{31, 119, 180}, {255, 127, 14}, {44, 160, 44},  {214, 39, 40},   {148, 103, 189},
+constexpr Rgb kPalette[10] = {{31, 119, 180}, {255, 127, 14},  {44, 160, 44},   {214, 39, 40},  {148, 103, 189},
                               {140, 86, 75},  {227, 119, 194}, {127, 127, 127}, {188, 189, 34}, {23, 190, 207}};
 
 std::string axis_title(const std::string& label, const std::string& unit, const std::string& multiplier) {
@@ -57,7 +57,8 @@ void PlotSpec::validate() const {
       throw Error(msg("plot series ", i, " ('", series[i].name, "'): ", series[i].x.size(), " x values but ",
                       series[i].y.size(), " y values"));
     if (!(series[i].width > 0 && series[i].width <= 32))
-      throw Error(msg("plot series ", i, " ('", series[i].name, "'): line width ", series[i].width, " must be in (0, 32]"));
+      throw Error(
+          msg("plot series ", i, " ('", series[i].name, "'): line width ", series[i].width, " must be in (0, 32]"));
   }
   for (const auto* r : {&x_range, &y_range})
     if (*r && !(std::isfinite((*r)->min) && std::isfinite((*r)->max) && (*r)->max > (*r)->min))
@@ -77,12 +78,14 @@ Plot render_plot(const PlotSpec& s) {
   const int tick = std::max(4, static_cast<int>(std::lround(text * 0.4)));
 
   // Ranges first: the tick labels decide the margins.
-  if (s.x_range) L.x = *s.x_range;
+  if (s.x_range)
+    L.x = *s.x_range;
   else {
     L.x = data_range(s, true);
     nice_range(L.x.min, L.x.max, 8);
   }
-  if (s.y_range) L.y = *s.y_range;
+  if (s.y_range)
+    L.y = *s.y_range;
   else {
     L.y = data_range(s, false);
     nice_range(L.y.min, L.y.max, 6);
@@ -114,8 +117,10 @@ Plot render_plot(const PlotSpec& s) {
     draw_text(img, A.x - tick - 3, y, yt.labels[i], {text, kText, Align::End, Align::Center});
   }
   if (!s.title.empty()) draw_text(img, A.x + A.w / 2, m, s.title, {title_size, kText, Align::Center});
-  draw_text(img, A.x + A.w / 2, s.height - m, axis_title(s.x_label, s.x_unit, xt.multiplier), {text, kText, Align::Center, Align::End});
-  draw_text(img, m, A.y + A.h / 2, axis_title(s.y_label, s.y_unit, yt.multiplier), {text, kText, Align::Start, Align::Center, true});
+  draw_text(img, A.x + A.w / 2, s.height - m, axis_title(s.x_label, s.x_unit, xt.multiplier),
+            {text, kText, Align::Center, Align::End});
+  draw_text(img, m, A.y + A.h / 2, axis_title(s.y_label, s.y_unit, yt.multiplier),
+            {text, kText, Align::Start, Align::Center, true});
 
   // Series, clipped to the area. Axis values beyond a few areas are clamped
   // so a wild point still draws a steep line instead of overflowing.
@@ -161,7 +166,8 @@ Plot render_plot(const PlotSpec& s) {
         std::size_t count = 0;
         for (const auto& pts : drawn)
           for (const PointF& q : pts)
-            if (std::isfinite(q.x) && r.contains(static_cast<int>(std::floor(q.x)), static_cast<int>(std::floor(q.y)))) ++count;
+            if (std::isfinite(q.x) && r.contains(static_cast<int>(std::floor(q.x)), static_cast<int>(std::floor(q.y))))
+              ++count;
         if (count < best_count) best_count = count, where = pos;
       }
     }
@@ -174,12 +180,15 @@ Plot render_plot(const PlotSpec& s) {
       const double cy = y + row / 2.0;
       stroke_line(img, {L.legend.x + m / 2.0, cy}, {L.legend.x + m / 2.0 + swatch, cy}, se.width,
                   se.color.value_or(series_color(named[i])), L.legend);
-      draw_text(img, L.legend.x + m + swatch, static_cast<int>(cy), se.name, {text, kText, Align::Start, Align::Center});
+      draw_text(img, L.legend.x + m + swatch, static_cast<int>(cy), se.name,
+                {text, kText, Align::Start, Align::Center});
     }
   }
   return plot;
 }
 
-void write_plot_png(const PlotSpec& spec, const std::filesystem::path& path) { write_png(render_plot(spec).image, path); }
+void write_plot_png(const PlotSpec& spec, const std::filesystem::path& path) {
+  write_png(render_plot(spec).image, path);
+}
 
 }  // namespace dda::render

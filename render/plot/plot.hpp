@@ -49,9 +49,9 @@ struct PlotSpec {
 };
 
 struct PlotLayout {
-  PixelRect area;        // the plotting area inside the axes
-  AxisRange x, y;        // axis ranges (display units)
-  PixelRect legend;      // empty if no legend
+  PixelRect area;    // the plotting area inside the axes
+  AxisRange x, y;    // axis ranges (display units)
+  PixelRect legend;  // empty if no legend
   // Axis value → continuous pixel coordinate (x right, y down).
   double to_px(double xv) const { return area.x + (xv - x.min) / (x.max - x.min) * area.w; }
   double to_py(double yv) const { return area.y + (y.max - yv) / (y.max - y.min) * area.h; }

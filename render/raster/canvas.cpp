@@ -6,7 +6,8 @@
 
 namespace dda::render {
 
-void stroke_polyline(Image& image, const std::vector<PointF>& points, double width, Rgb color, const PixelRect& clip_in) {
+void stroke_polyline(Image& image, const std::vector<PointF>& points, double width, Rgb color,
+                     const PixelRect& clip_in) {
   PixelRect clip = clip_in;
   clip.x = std::max(clip.x, 0), clip.y = std::max(clip.y, 0);
   clip.w = std::min(clip_in.right(), image.width()) - clip.x;

@@ -20,7 +20,7 @@ Rgb color_at(ColorMap map, double t);
 // Shown for a block whose value is NaN or infinite.
 inline constexpr Rgb kInvalidColor{128, 128, 128};
 
-const char* to_string(ColorMap map);                   // "viridis", "coolwarm"
-ColorMap parse_colormap(std::string_view name);        // also accepts "diverging"; dda::Error otherwise
+const char* to_string(ColorMap map);             // "viridis", "coolwarm"
+ColorMap parse_colormap(std::string_view name);  // also accepts "diverging"; dda::Error otherwise
 
 }  // namespace dda::render

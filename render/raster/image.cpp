@@ -54,7 +54,8 @@ Image::Image(int width, int height, Rgb fill) {
 }
 
 Rgb Image::pixel(int x, int y) const {
-  DDA_ASSERT(x >= 0 && y >= 0 && x < width_ && y < height_, msg("pixel (", x, ", ", y, ") outside ", width_, "x", height_));
+  DDA_ASSERT(x >= 0 && y >= 0 && x < width_ && y < height_,
+             msg("pixel (", x, ", ", y, ") outside ", width_, "x", height_));
   const std::uint8_t* p = &rgb_[(static_cast<std::size_t>(y) * width_ + x) * 3];
   return {p[0], p[1], p[2]};
 }

@@ -48,19 +48,32 @@ std::vector<std::uint32_t> decode_utf8(std::string_view s) {
 std::string ascii_fallback(std::string_view utf8) {
   std::string out;
   for (std::uint32_t cp : decode_utf8(utf8)) {
-    if (cp >= 32 && cp < 127) out += static_cast<char>(cp);
-    else if (cp == 0x3C3) out += 's';   // σ
-    else if (cp == 0x3C4) out += 't';   // τ
-    else if (cp == 0x394) out += 'D';   // Δ
-    else if (cp == 0x3B5) out += 'e';   // ε
-    else if (cp == 0x3BC) out += 'u';   // μ
-    else if (cp == 0xD7) out += 'x';    // ×
-    else if (cp == 0xB7) out += '.';    // ·
-    else if (cp == 0x2212) out += '-';  // minus sign
-    else if (cp == 0x2014 || cp == 0x2013) out += '-';
-    else if (cp == 0xB0) out += "deg";
-    else if (cp == 0xB2) out += '2';
-    else out += '?';
+    if (cp >= 32 && cp < 127)
+      out += static_cast<char>(cp);
+    else if (cp == 0x3C3)
+      out += 's';  // σ
+    else if (cp == 0x3C4)
+      out += 't';  // τ
+    else if (cp == 0x394)
+      out += 'D';  // Δ
+    else if (cp == 0x3B5)
+      out += 'e';  // ε
+    else if (cp == 0x3BC)
+      out += 'u';  // μ
+    else if (cp == 0xD7)
+      out += 'x';  // ×
+    else if (cp == 0xB7)
+      out += '.';  // ·
+    else if (cp == 0x2212)
+      out += '-';  // minus sign
+    else if (cp == 0x2014 || cp == 0x2013)
+      out += '-';
+    else if (cp == 0xB0)
+      out += "deg";
+    else if (cp == 0xB2)
+      out += '2';
+    else
+      out += '?';
   }
   return out;
 }
@@ -125,9 +138,9 @@ class FontCache {
       if (std::string_view(env) == "none") return;
       candidates.emplace_back(env);
     }
-    candidates.insert(candidates.end(), {"/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf",
-                                         "/usr/share/fonts/TTF/DejaVuSans.ttf",
-                                         "/usr/share/fonts/dejavu/DejaVuSans.ttf"});
+    candidates.insert(candidates.end(),
+                      {"/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf", "/usr/share/fonts/TTF/DejaVuSans.ttf",
+                       "/usr/share/fonts/dejavu/DejaVuSans.ttf"});
     for (const std::string& p : candidates) {
       std::ifstream in(p, std::ios::binary);
       if (!in) continue;
@@ -238,9 +251,12 @@ class FontCache {
 
 int anchor(int pos, int extent, Align a) {
   switch (a) {
-    case Align::Start: return pos;
-    case Align::Center: return pos - extent / 2;
-    case Align::End: return pos - extent;
+    case Align::Start:
+      return pos;
+    case Align::Center:
+      return pos - extent / 2;
+    case Align::End:
+      return pos - extent;
   }
   return pos;
 }

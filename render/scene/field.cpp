@@ -41,18 +41,24 @@ Field parse_field(std::string_view key) {
 double field_value(const Scene& scene, std::size_t b, Field f) {
   const Vec3& s = scene.stress[b];
   switch (f) {
-    case Field::None: return 0;
-    case Field::SigmaXX: return s.x();
-    case Field::SigmaYY: return s.y();
-    case Field::TauXY: return s.z();
+    case Field::None:
+      return 0;
+    case Field::SigmaXX:
+      return s.x();
+    case Field::SigmaYY:
+      return s.y();
+    case Field::TauXY:
+      return s.z();
     case Field::SigmaMajor: {
       const double c = (s.x() + s.y()) / 2, r = std::hypot((s.x() - s.y()) / 2, s.z());
       return c + r;
     }
     case Field::VonMises:
       return std::sqrt(std::max(0.0, s.x() * s.x() - s.x() * s.y() + s.y() * s.y() + 3 * s.z() * s.z()));
-    case Field::Velocity: return scene.velocity[b].norm();
-    case Field::Displacement: return scene.displacement[b].norm();
+    case Field::Velocity:
+      return scene.velocity[b].norm();
+    case Field::Displacement:
+      return scene.displacement[b].norm();
   }
   return 0;
 }

@@ -28,14 +28,18 @@ Vec2 polygon_centroid(std::span<const Vec2> p) {
 
 BlockId Scene::add_block(std::span<const Vec2> outline, const Vec3& s, const Vec2& v, const Vec2& d,
                          std::span<const Vec2> initial) {
-  if (outline.size() < 3) throw Error(msg("scene block ", block_count(), ": needs at least 3 vertices, got ", outline.size()));
+  if (outline.size() < 3)
+    throw Error(msg("scene block ", block_count(), ": needs at least 3 vertices, got ", outline.size()));
   if (!initial.empty() && initial.size() != outline.size())
-    throw Error(msg("scene block ", block_count(), ": ", initial.size(), " initial vertices for ", outline.size(), " vertices"));
+    throw Error(msg("scene block ", block_count(), ": ", initial.size(), " initial vertices for ", outline.size(),
+                    " vertices"));
   if (!initial.empty() && initial_vertices.empty() && !vertices.empty())
     initial_vertices = vertices;  // earlier blocks: no motion known, start = now
   vertices.insert(vertices.end(), outline.begin(), outline.end());
-  if (!initial.empty()) initial_vertices.insert(initial_vertices.end(), initial.begin(), initial.end());
-  else if (!initial_vertices.empty()) initial_vertices.insert(initial_vertices.end(), outline.begin(), outline.end());
+  if (!initial.empty())
+    initial_vertices.insert(initial_vertices.end(), initial.begin(), initial.end());
+  else if (!initial_vertices.empty())
+    initial_vertices.insert(initial_vertices.end(), outline.begin(), outline.end());
   offsets.push_back(static_cast<std::int32_t>(vertices.size()));
   centroids.push_back(polygon_centroid(outline));
   stress.push_back(s);
@@ -58,11 +62,13 @@ void Scene::validate() const {
     if (offsets[b + 1] - offsets[b] < 3) throw Error(msg("scene block ", b, ": fewer than 3 vertices"));
   for (std::size_t k = 0; k < vertices.size(); ++k)
     if (!vertices[k].allFinite() || (!initial_vertices.empty() && !initial_vertices[k].allFinite())) {
-      const auto b = std::upper_bound(offsets.begin(), offsets.end(), static_cast<std::int32_t>(k)) - offsets.begin() - 1;
+      const auto b =
+          std::upper_bound(offsets.begin(), offsets.end(), static_cast<std::int32_t>(k)) - offsets.begin() - 1;
       throw Error(msg("scene block ", b, ": vertex ", k - offsets[b], " is not finite"));
     }
   for (const ContactMark& c : contacts)
-    if (c.block < 0 || static_cast<std::size_t>(c.block) >= n || c.vertex < 0 || c.vertex >= offsets[c.block + 1] - offsets[c.block])
+    if (c.block < 0 || static_cast<std::size_t>(c.block) >= n || c.vertex < 0 ||
+        c.vertex >= offsets[c.block + 1] - offsets[c.block])
       throw Error(msg("scene: contact at block ", c.block, " vertex ", c.vertex, " does not exist"));
 }
 

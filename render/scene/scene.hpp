@@ -45,10 +45,10 @@ struct Scene {
   std::vector<Vec2> initial_vertices;
 
   // Per block.
-  std::vector<Vec2> centroids;      // m (current)
-  std::vector<Vec3> stress;         // (σxx, σyy, τxy), Pa, tension positive
-  std::vector<Vec2> velocity;       // centroid velocity (m/s)
-  std::vector<Vec2> displacement;   // centroid displacement since the start (m)
+  std::vector<Vec2> centroids;     // m (current)
+  std::vector<Vec3> stress;        // (σxx, σyy, τxy), Pa, tension positive
+  std::vector<Vec2> velocity;      // centroid velocity (m/s)
+  std::vector<Vec2> displacement;  // centroid displacement since the start (m)
 
   std::vector<ContactMark> contacts;
   std::vector<MonitorMark> monitors;

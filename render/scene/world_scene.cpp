@@ -40,10 +40,12 @@ Scene WorldSnapshot::take(const World& world, bool with_contacts) {
     const std::int32_t n = s.offsets[b + 1] - s.offsets[b];
     const bool same = b + 1 < initial_offsets_.size() && initial_offsets_[b + 1] - initial_offsets_[b] == n;
     for (std::int32_t i = 0; i < n; ++i)
-      s.initial_vertices[s.offsets[b] + i] = same ? initial_vertices_[initial_offsets_[b] + i] : s.vertices[s.offsets[b] + i];
+      s.initial_vertices[s.offsets[b] + i] =
+          same ? initial_vertices_[initial_offsets_[b] + i] : s.vertices[s.offsets[b] + i];
   }
   for (const Monitor& m : monitors_)
-    s.monitors.push_back({m.name, world.tracked_position(m.tracked_point), world.tracked_displacement(m.tracked_point)});
+    s.monitors.push_back(
+        {m.name, world.tracked_position(m.tracked_point), world.tracked_displacement(m.tracked_point)});
   return s;
 }
 

@@ -57,8 +57,8 @@ namespace dda {
 namespace {
 
 struct StepCount {
-  int steps = 0;        // steps counted (no contact search, no cut)
-  long allocations = 0; // heap allocations in those steps
+  int steps = 0;         // steps counted (no contact search, no cut)
+  long allocations = 0;  // heap allocations in those steps
   int searched_or_cut = 0;
 };
 

@@ -16,7 +16,8 @@ std::string error_of(F&& f) {
   }
   return "(no error)";
 }
-#define EXPECT_MESSAGE(expr, part) EXPECT_NE(error_of([&] { expr; }).find(part), std::string::npos) << error_of([&] { expr; })
+#define EXPECT_MESSAGE(expr, part) \
+  EXPECT_NE(error_of([&] { expr; }).find(part), std::string::npos) << error_of([&] { expr; })
 }  // namespace
 
 TEST(BadInput, DegeneratePolygonsNameTheBlock) {
@@ -76,7 +77,8 @@ TEST(BadInput, OverlappingBlocksAtTheStartAreNamed) {
   // Also when the shared edge is computed with cos/sin round-off.
   World rotated;
   const int rock2 = rotated.add_rock_material(test::granite());
-  for (int i = 0; i < 5; ++i) rotated.add_block(test::rotated(test::rectangle(i * 0.3, 0, 0.3, 0.2), deg_to_rad(33)), rock2);
+  for (int i = 0; i < 5; ++i)
+    rotated.add_block(test::rotated(test::rectangle(i * 0.3, 0, 0.3, 0.2), deg_to_rad(33)), rock2);
   EXPECT_NO_THROW(rotated.step());
 }
 
@@ -112,7 +114,7 @@ TEST(BadInput, StepThatWouldTurnABlockInsideOutIsRefusedNamingTheBlock) {
   const int t = w.add_displacement_target(sliver, Vec2(1, 0.05));
   w.set_target_displacement(t, Vec2(0, -0.5));
   w.controls().g1 = 1e-3;
-  w.controls().g2 = 1000;  // no displacement bound: only the inversion check can refuse the step
+  w.controls().g2 = 1000;             // no displacement bound: only the inversion check can refuse the step
   w.controls().contact_range = 1000;  // (nor the contact range)
   w.controls().max_step_cuts = 3;
   EXPECT_MESSAGE(w.step(), "would turn inside out (its area would become zero or negative) (block 1)");

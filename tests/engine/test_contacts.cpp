@@ -77,8 +77,8 @@ TEST(Contacts, RunningBondGivesContactsAtOverlapEnds) {
 
 TEST(Contacts, CornerPokingIntoAnEdgeMakesOneContact) {
   Polys p;
-  p.add(test::rectangle(0, 0, 2, 1));                                                     // floor block
-  p.add({{1.0, 1.001}, {1.5, 1.5}, {1.0, 2.0}, {0.5, 1.5}});                              // a diamond above it
+  p.add(test::rectangle(0, 0, 2, 1));                         // floor block
+  p.add({{1.0, 1.001}, {1.5, 1.5}, {1.0, 2.0}, {0.5, 1.5}});  // a diamond above it
   const auto pairs = find_candidate_pairs(p.view(), 0.01);
   NarrowPhaseSettings s;
   s.range = 0.01;

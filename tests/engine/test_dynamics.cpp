@@ -169,7 +169,6 @@ std::uint64_t run_grid_scene(int threads) {
   return w.state_hash();
 }
 
-
 // A wave problem: a bar of 40 × 4 blocks, its left column kicked, steps of
 // 2e-6 s. Solves take a few CG iterations, so the step multiplies
 // matrix-free (the grid scene above, hundreds per solve, multiplies with the
@@ -301,7 +300,8 @@ TEST(OpenClose, PredictedStatesSaveIterationsWithinTheTimeStepError) {
     return centroids_after(w, 6e-4, sum);
   };
   StepStats last_sum, predicted_sum, fine_sum;
-  const auto last = run(false, 2e-6, last_sum), predicted = run(true, 2e-6, predicted_sum), fine = run(false, 1e-6, fine_sum);
+  const auto last = run(false, 2e-6, last_sum), predicted = run(true, 2e-6, predicted_sum),
+             fine = run(false, 1e-6, fine_sum);
   EXPECT_LT(predicted_sum.open_close_iterations, last_sum.open_close_iterations);
   const double by_prediction = largest_distance(predicted, last), by_time_step = largest_distance(fine, last);
   ASSERT_GT(by_time_step, 0);
@@ -392,7 +392,8 @@ OpenCloseErrors open_close_errors(double gg) {
     e.moved = std::max(e.moved, (exact.block_centroid(b) - start.block_centroid(b)).norm());
     e.plain = std::max(e.plain, (plain.block_centroid(b) - exact.block_centroid(b)).norm());
     e.loose = std::max(e.loose, (loose.block_centroid(b) - exact.block_centroid(b)).norm());
-    e.loose_from_tightest = std::max(e.loose_from_tightest, (loose.block_centroid(b) - tightest.block_centroid(b)).norm());
+    e.loose_from_tightest =
+        std::max(e.loose_from_tightest, (loose.block_centroid(b) - tightest.block_centroid(b)).norm());
   }
   return e;
 }

@@ -124,7 +124,8 @@ TEST(PressureLoad, ShiEqualsFhiForTheSameResultant) {
   shi.w.step();
   fhi.w.step();
   for (int k = 0; k < 6; ++k)
-    EXPECT_NEAR(shi.w.block_velocity(shi.b)[k], fhi.w.block_velocity(fhi.b)[k], 1e-9 * shi.w.block_velocity(shi.b).norm());
+    EXPECT_NEAR(shi.w.block_velocity(shi.b)[k], fhi.w.block_velocity(fhi.b)[k],
+                1e-9 * shi.w.block_velocity(shi.b).norm());
   // Later the pressure follows the strained edge (length and normal change
   // with strains of ~1e-5) while the point force keeps its direction and size:
   // the two agree to the order of the strain.
@@ -134,8 +135,10 @@ TEST(PressureLoad, ShiEqualsFhiForTheSameResultant) {
   }
   EXPECT_GT(shi.w.block_velocity(shi.b)[0], 0.1);
   for (int k = 0; k < 6; ++k)
-    EXPECT_NEAR(shi.w.block_velocity(shi.b)[k], fhi.w.block_velocity(fhi.b)[k], 1e-4 * shi.w.block_velocity(shi.b).norm());
-  EXPECT_NEAR(shi.w.block_stress(shi.b)[0], fhi.w.block_stress(fhi.b)[0], 1e-4 * std::abs(fhi.w.block_stress(fhi.b)[0]));
+    EXPECT_NEAR(shi.w.block_velocity(shi.b)[k], fhi.w.block_velocity(fhi.b)[k],
+                1e-4 * shi.w.block_velocity(shi.b).norm());
+  EXPECT_NEAR(shi.w.block_stress(shi.b)[0], fhi.w.block_stress(fhi.b)[0],
+              1e-4 * std::abs(fhi.w.block_stress(fhi.b)[0]));
 }
 
 TEST(DisplacementTarget, VelocityHistoryIsFollowedWithinTheG2Bound) {

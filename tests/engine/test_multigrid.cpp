@@ -124,7 +124,8 @@ TEST(Multigrid, PcgMatchesDirectSolveOnWallWithLargeTimeStep) {
   VecX xb;
   const int bj_iterations = cold_solve(bj, w.last_matrix(), w.last_rhs(), xb).iterations;
   const int mg_iterations = cold_solve(pcg, w.last_matrix(), w.last_rhs(), x).iterations;
-  std::printf("[ wall(6), dt 0.05 ] CG iterations to 1e-10: block-Jacobi %d, multigrid %d\n", bj_iterations, mg_iterations);
+  std::printf("[ wall(6), dt 0.05 ] CG iterations to 1e-10: block-Jacobi %d, multigrid %d\n", bj_iterations,
+              mg_iterations);
   EXPECT_LE(mg_iterations * 5, bj_iterations * 2);  // measured 90 vs 268
 }
 

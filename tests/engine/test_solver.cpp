@@ -5,8 +5,8 @@
 // PCG against a direct sparse solve on systems the engine assembled.
 #include <gtest/gtest.h>
 
-#include "scenes.hpp"
 #include "assembly/contact_operator.hpp"
+#include "scenes.hpp"
 #include "solver/linear_solver.hpp"
 
 using namespace dda;
@@ -188,8 +188,9 @@ TEST(Solver, MatrixFreeProductEqualsTheStoredMatrix) {
     int v, e;
     ContactState state;
   };
-  const std::vector<Link> links = {{0, 1, ContactState::Locked}, {1, 0, ContactState::Locked}, {1, 2, ContactState::Sliding},
-                                   {2, 0, ContactState::Open},   {3, 1, ContactState::Locked}, {2, 3, ContactState::Sliding}};
+  const std::vector<Link> links = {{0, 1, ContactState::Locked},  {1, 0, ContactState::Locked},
+                                   {1, 2, ContactState::Sliding}, {2, 0, ContactState::Open},
+                                   {3, 1, ContactState::Locked},  {2, 3, ContactState::Sliding}};
   std::vector<Contact> contacts;
   std::vector<ContactGradients> kinematics;
   std::uint64_t seed = 12345;

@@ -35,14 +35,15 @@ TEST_F(Model1Queries, BlockContainingAPoint) {
   const CutBlock& b = bar->blocks[inside[0]];
   EXPECT_NEAR(b.area, 0.04, 1e-12);
   for (const Vec2& corner : {Vec2(0, 0), Vec2(0.2, 0), Vec2(0.2, 0.2), Vec2(0, 0.2)}) {
-    const bool has = std::any_of(b.vertices.begin(), b.vertices.end(), [&](const Vec2& v) { return (v - corner).norm() < 1e-12; });
+    const bool has =
+        std::any_of(b.vertices.begin(), b.vertices.end(), [&](const Vec2& v) { return (v - corner).norm() < 1e-12; });
     EXPECT_TRUE(has) << corner.transpose();
   }
-  EXPECT_EQ(inside[0], 0);  // reading order: the bottom-left block comes first
-  EXPECT_EQ(bar->blocks_containing(Vec2(0.2, 0.1)).size(), 2u);    // on a shared edge
-  EXPECT_EQ(bar->blocks_containing(Vec2(0.2, 0.2)).size(), 4u);    // on a shared corner
-  EXPECT_TRUE(bar->blocks_containing(Vec2(30, 0.5)).empty());      // outside
-  EXPECT_EQ(bar->blocks_containing(Vec2(19.9, 0.9))[0], 499);      // top-right block last
+  EXPECT_EQ(inside[0], 0);                                       // reading order: the bottom-left block comes first
+  EXPECT_EQ(bar->blocks_containing(Vec2(0.2, 0.1)).size(), 2u);  // on a shared edge
+  EXPECT_EQ(bar->blocks_containing(Vec2(0.2, 0.2)).size(), 4u);  // on a shared corner
+  EXPECT_TRUE(bar->blocks_containing(Vec2(30, 0.5)).empty());    // outside
+  EXPECT_EQ(bar->blocks_containing(Vec2(19.9, 0.9))[0], 499);    // top-right block last
 }
 
 TEST_F(Model1Queries, BlocksInABox) {

@@ -84,10 +84,12 @@ TEST(NonPersistentSet, TracesAndBridgesAlternateAlongEachLine) {
   for (double y : {0.0, 1.0, 2.0, 3.0}) {
     std::vector<std::pair<double, double>> on_line;
     for (const auto& seg : segments)
-      if (std::abs(seg.a.y() - y) < 1e-12) on_line.push_back({std::min(seg.a.x(), seg.b.x()), std::max(seg.a.x(), seg.b.x())});
+      if (std::abs(seg.a.y() - y) < 1e-12)
+        on_line.push_back({std::min(seg.a.x(), seg.b.x()), std::max(seg.a.x(), seg.b.x())});
     ASSERT_GE(on_line.size(), 3u) << "y = " << y;
     std::sort(on_line.begin(), on_line.end());
-    for (std::size_t k = 0; k + 1 < on_line.size(); ++k) EXPECT_NEAR(on_line[k + 1].first - on_line[k].second, 0.5, 1e-12);
+    for (std::size_t k = 0; k + 1 < on_line.size(); ++k)
+      EXPECT_NEAR(on_line[k + 1].first - on_line[k].second, 0.5, 1e-12);
     for (std::size_t k = 1; k + 1 < on_line.size(); ++k) EXPECT_NEAR(on_line[k].second - on_line[k].first, 2.0, 1e-12);
   }
 }
@@ -438,7 +440,8 @@ TEST(Robustness, RandomNearCopiesAlwaysTileTheDomain) {
     SplitMix64 rng(seed);
     auto u = [&] { return rng.uniform(); };
     CutInput in;
-    in.domain = seed % 2 ? rectangle(0, 0, 10, 10) : std::vector<Vec2>{Vec2(0, 0), Vec2(10, 0), Vec2(10, 4), Vec2(4, 4), Vec2(4, 10), Vec2(0, 10)};
+    in.domain = seed % 2 ? rectangle(0, 0, 10, 10) : std::vector<Vec2>{Vec2(0, 0), Vec2(10, 0), Vec2(10, 4),
+                                                                       Vec2(4, 4), Vec2(4, 10), Vec2(0, 10)};
     in.inner_cut_material = 0;
     in.min_block_area = seed % 3 == 0 ? 0.01 : 0.0;
     for (int k = 0; k < 30; ++k) {
@@ -494,7 +497,9 @@ TEST(Robustness, RandomLatticeJointsAlwaysTileTheDomain) {
     if (seed % 2 == 0) in.holes = {rectangle(1, 1, 2.5, 2.5)};
     in.inner_cut_material = 0;
     in.min_block_area = seed % 3 == 0 ? 0.05 : 0.0;
-    auto lattice = [&] { return Vec2(std::floor(rng.uniform() * 9) - 0.5 * (seed % 5 == 0), std::floor(rng.uniform() * 9)); };
+    auto lattice = [&] {
+      return Vec2(std::floor(rng.uniform() * 9) - 0.5 * (seed % 5 == 0), std::floor(rng.uniform() * 9));
+    };
     for (int k = 0; k < 25; ++k) {
       Vec2 a = lattice(), b = lattice();
       if ((a - b).norm() < 1e-9) continue;

@@ -38,11 +38,14 @@ TEST(ValidateSimplePolygon, CollinearEdgesOfANotchedOutlinePassAtAnyAngle) {
 // and 5. In exact arithmetic they do not cross (checked with rationals), but
 // the floating-point orientation signs say they do.
 TEST(ValidateSimplePolygon, NarrowNotchBetweenCollinearEdgesPasses) {
-  const std::vector<Vec2> block = {
-      Vec2(6.833333333333333, 3.7222222222222223),  Vec2(6.7472793425277882, 3.7509068858240706),
-      Vec2(5.0000000237545059, 1.7221081552786792), Vec2(5, 1.3408038829311422),
-      Vec2(5, 1.7221081276968777),                  Vec2(4.3561590595187933, 0.9745323573624094),
-      Vec2(5.2034214220412691, 0.27786297378714386), Vec2(6.8656039598678351, 3.6469240936417187)};
+  const std::vector<Vec2> block = {Vec2(6.833333333333333, 3.7222222222222223),
+                                   Vec2(6.7472793425277882, 3.7509068858240706),
+                                   Vec2(5.0000000237545059, 1.7221081552786792),
+                                   Vec2(5, 1.3408038829311422),
+                                   Vec2(5, 1.7221081276968777),
+                                   Vec2(4.3561590595187933, 0.9745323573624094),
+                                   Vec2(5.2034214220412691, 0.27786297378714386),
+                                   Vec2(6.8656039598678351, 3.6469240936417187)};
   EXPECT_TRUE(segments_cross_properly(block[1], block[2], block[4], block[5]));  // the false alarm
   EXPECT_NO_THROW(validate_simple_polygon(block, "notched block"));
 }

@@ -32,7 +32,9 @@ namespace {
 // Largest per-channel difference.
 int diff(Rgb a, Rgb b) { return std::max({std::abs(a.r - b.r), std::abs(a.g - b.g), std::abs(a.b - b.b)}); }
 
-std::string str(Rgb c) { return "(" + std::to_string(c.r) + "," + std::to_string(c.g) + "," + std::to_string(c.b) + ")"; }
+std::string str(Rgb c) {
+  return "(" + std::to_string(c.r) + "," + std::to_string(c.g) + "," + std::to_string(c.b) + ")";
+}
 
 Rgb pixel_at(const Frame& f, const Vec2& world) {
   const Vec2 p = f.layout.to_pixel(world);
@@ -68,7 +70,8 @@ TestScene make_scene() {
   // L: 2 m wide foot, 3 m tall stem 1 m wide; centroid (x0+5.7, y0+1.3) is
   // inside. Listed from the inner corner's neighbour (7, 1), from which a plain
   // triangle fan would cover part of the notch.
-  const std::vector<Vec2> L{{x0 + 7, y0 + 1}, {x0 + 6, y0 + 1}, {x0 + 6, y0 + 3}, {x0 + 5, y0 + 3}, {x0 + 5, y0}, {x0 + 7, y0}};
+  const std::vector<Vec2> L{{x0 + 7, y0 + 1}, {x0 + 6, y0 + 1}, {x0 + 6, y0 + 3},
+                            {x0 + 5, y0 + 3}, {x0 + 5, y0},     {x0 + 7, y0}};
   t.scene.add_block(L, Vec3(2e6, 0, 0));
   t.sxx.push_back(2e6);
   // Block with the extreme value, -6.5 MPa.
@@ -120,7 +123,10 @@ TEST(Frame, BackgroundOutsideTheBlocksIncludingTheNotchOfAConcaveBlock) {
   const Frame f = r.render(t.scene, o);
   EXPECT_EQ(pixel_at(f, t.notch), o.background) << "concave block filled across its notch";
   const PixelRect& m = f.layout.model;
-  for (auto [x, y] : {std::pair{m.x + 1, m.y + 1}, {m.right() - 2, m.y + 1}, {m.x + 1, m.bottom() - 2}, {m.right() - 2, m.bottom() - 2}})
+  for (auto [x, y] : {std::pair{m.x + 1, m.y + 1},
+                      {m.right() - 2, m.y + 1},
+                      {m.x + 1, m.bottom() - 2},
+                      {m.right() - 2, m.bottom() - 2}})
     EXPECT_EQ(f.image.pixel(x, y), o.background) << "model corner " << x << "," << y;
   EXPECT_EQ(f.image.pixel(0, f.image.height() - 1), o.background);
   EXPECT_EQ(f.image.pixel(f.image.width() - 1, f.image.height() - 1), o.background);
@@ -241,7 +247,8 @@ TEST(Frame, MagnifiedDeformationMovesBlocksByFactorTimesDisplacement) {
 
 TEST(Frame, EveryFieldAndOverlayRenders) {
   TestScene t = make_scene();
-  t.scene.contacts = {{0, 2, dda::ContactState::Open}, {1, 2, dda::ContactState::Sliding}, {2, 2, dda::ContactState::Locked}};
+  t.scene.contacts = {
+      {0, 2, dda::ContactState::Open}, {1, 2, dda::ContactState::Sliding}, {2, 2, dda::ContactState::Locked}};
   t.scene.monitors.push_back({"A", {501.5, -198.5}, {0, 0}});
   Renderer r;
   for (const FieldInfo& info : all_fields()) {
@@ -299,7 +306,8 @@ TEST(Frame, EmptySceneRendersBackground) {
   Renderer r;
   FrameOptions o = sxx_options();
   const Frame f = r.render(Scene{}, o);
-  EXPECT_EQ(f.image.pixel(f.layout.model.x + f.layout.model.w / 2, f.layout.model.y + f.layout.model.h / 2), o.background);
+  EXPECT_EQ(f.image.pixel(f.layout.model.x + f.layout.model.w / 2, f.layout.model.y + f.layout.model.h / 2),
+            o.background);
 }
 
 TEST(Triangulate, CoversConcaveAndClockwisePolygons) {
@@ -312,7 +320,8 @@ TEST(Triangulate, CoversConcaveAndClockwisePolygons) {
     return a;
   };
   // Comb: area 5×1 base + 3 teeth of 1×2 = 11.
-  std::vector<Vec2> comb{{0, 0}, {5, 0}, {5, 3}, {4, 3}, {4, 1}, {3, 1}, {3, 3}, {2, 3}, {2, 1}, {1, 1}, {1, 3}, {0, 3}};
+  std::vector<Vec2> comb{{0, 0}, {5, 0}, {5, 3}, {4, 3}, {4, 1}, {3, 1},
+                         {3, 3}, {2, 3}, {2, 1}, {1, 1}, {1, 3}, {0, 3}};
   std::vector<std::array<int, 3>> tris;
   triangulate(comb, tris);
   EXPECT_EQ(tris.size(), comb.size() - 2);

@@ -1,8 +1,8 @@
 // `dda run` on scripts with mistakes: the message names the script, the line,
 // the call and the argument; the exit code is non-zero; CSV files written so
 // far stay readable. Also --set, Ctrl-C and the command line itself.
-#include <gtest/gtest.h>
 #include <fcntl.h>
+#include <gtest/gtest.h>
 #include <signal.h>
 #include <spawn.h>
 #include <sys/wait.h>
@@ -17,8 +17,8 @@ using namespace dda::test;
 namespace {
 
 const char* kHeader =
-    "local m = dda.model{ plane = 'stress', gravity = {0, -9.81}, g1 = 0.01, g2 = 0.5 }\n"   // line 1
-    "local rock = m:rock{ density = 2000, E = 5e9, nu = 0.25 }\n";                           // line 2
+    "local m = dda.model{ plane = 'stress', gravity = {0, -9.81}, g1 = 0.01, g2 = 0.5 }\n"  // line 1
+    "local rock = m:rock{ density = 2000, E = 5e9, nu = 0.25 }\n";                          // line 2
 
 struct ErrorCase {
   const char* name;
@@ -50,22 +50,26 @@ const ErrorCase kCases[] = {
      "m:joint: unknown option 'cohesoin' (did you mean 'cohesion'?)"},
     {"negative_spacing", "m:domain{ box = {0, 0, 2, 1} }\nm:joint_set{ dip = 0, spacing = -0.2 }\n", 4,
      "m:joint_set: option 'spacing' must be positive, got -0.2"},
-    {"unknown_field", "m:add_block{ {0, 0}, {1, 0}, {1, 1}, {0, 1} }\nm:monitor{ at = {0.5, 0.5}, fields = {'sxx', 'sigma'} }\n",
-     4, "m:monitor: unknown field 'sigma'"},
+    {"unknown_field",
+     "m:add_block{ {0, 0}, {1, 0}, {1, 1}, {0, 1} }\nm:monitor{ at = {0.5, 0.5}, fields = {'sxx', 'sigma'} }\n", 4,
+     "m:monitor: unknown field 'sigma'"},
     {"missing_option", "m:domain{ box = {0, 0, 2, 1} }\nm:joint_set{ spacing = 0.2 }\n", 4,
      "m:joint_set: option 'dip' is required"},
-    {"bad_point", "m:add_block{ {0, 0}, {1, 0}, {1}, {0, 1} }\n", 3, "m:add_block: the outline point 3 must be a point {x, y}"},
+    {"bad_point", "m:add_block{ {0, 0}, {1, 0}, {1}, {0, 1} }\n", 3,
+     "m:add_block: the outline point 3 must be a point {x, y}"},
     {"wrong_self", "m.step(5)\n", 3, "m:step: expected a model as self"},
     {"misspelt_method", "m:stpe(5)\n", 3, "has no method or field 'stpe' (did you mean 'step'?)"},
     {"engine_error", "m:add_block{ {0, 0}, {1, 0}, {0, 1}, {1, 1} }\n", 3, "m:add_block: block 0"},
     {"closed_model", "local b = m:add_block{ {0, 0}, {1, 0}, {1, 1}, {0, 1} }\nm:close()\nprint(b:area())\n", 5,
      "b:area: attempt to use a block of a closed model"},
     {"other_model",
-     "local b = m:add_block{ {0, 0}, {1, 0}, {1, 1}, {0, 1} }\nlocal m2 = dda.model{}\nm2:rock{density = 1, E = 1, nu = 0}\n"
+     "local b = m:add_block{ {0, 0}, {1, 0}, {1, 1}, {0, 1} }\nlocal m2 = dda.model{}\nm2:rock{density = 1, E = 1, nu "
+     "= 0}\n"
      "m2:edges{ block = b }\n",
      6, "m:edges: option 'block' belongs to another model"},
-    {"bad_history", "m:add_block{ {0, 0}, {1, 0}, {1, 1}, {0, 1} }\nm:point_load{ at = {0.5, 0.5}, fx = {{0, 1}, {'x', 2}} }\n",
-     4, "m:point_load: option 'fx' entry 2 {t, value} must be a point {x, y} of finite numbers"},
+    {"bad_history",
+     "m:add_block{ {0, 0}, {1, 0}, {1, 1}, {0, 1} }\nm:point_load{ at = {0.5, 0.5}, fx = {{0, 1}, {'x', 2}} }\n", 4,
+     "m:point_load: option 'fx' entry 2 {t, value} must be a point {x, y} of finite numbers"},
     {"history_returns_nil",
      "m:add_block{ {0, 0}, {1, 0}, {1, 1}, {0, 1} }\n"
      "m:point_load{ at = {0.5, 0.5}, fx = function(t) if t > 0.05 then return nil end return 0 end }\n"
@@ -74,8 +78,10 @@ const ErrorCase kCases[] = {
     {"runtime_error", "local x = nil\nprint(x.y)\n", 4, "attempt to index a nil value"},
     {"syntax_error", "local x = = 1\n", 3, "unexpected symbol"},
     {"unknown_controls", "m:controls{ g3 = 1 }\n", 3, "m:controls: unknown option 'g3'"},
-    {"bad_plane", "local m2 = dda.model{ plane = 'stretch' }\n", 3, "dda.model: option 'plane' must be \"stress\" or \"strain\""},
-    {"no_block_at_point", "m:add_block{ {0, 0}, {1, 0}, {1, 1}, {0, 1} }\nm:fix(5, 5)\n", 4, "m:fix: no block at (5, 5)"},
+    {"bad_plane", "local m2 = dda.model{ plane = 'stretch' }\n", 3,
+     "dda.model: option 'plane' must be \"stress\" or \"strain\""},
+    {"no_block_at_point", "m:add_block{ {0, 0}, {1, 0}, {1, 1}, {0, 1} }\nm:fix(5, 5)\n", 4,
+     "m:fix: no block at (5, 5)"},
 };
 
 INSTANTIATE_TEST_SUITE_P(Cases, ScriptErrors, ::testing::ValuesIn(kCases),
@@ -155,9 +161,10 @@ TEST(CliParams, SetValuesReachTheScript) {
              "print('b', dda.param('b', true))\n"
              "print('d', dda.param('d', 42))\n"
              "print('out', dda.out_dir())\n");
-  const auto r = run_dda("run params.lua --quiet --out results --set n=7 --set x=2.5e-3 --set s=hello --set b=false "
-                         "--set typo=1",
-                         dir.path);
+  const auto r = run_dda(
+      "run params.lua --quiet --out results --set n=7 --set x=2.5e-3 --set s=hello --set b=false "
+      "--set typo=1",
+      dir.path);
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_NE(r.out.find("n\t7\tinteger"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("x\t0.0025"), std::string::npos) << r.out;
@@ -217,7 +224,7 @@ TEST(Console, ReadsEvaluatesPrintsAndSurvivesErrors) {
   TempDir dir("console");
   write_file(dir / "setup.lua",
              "m = dda.model{ plane = 'stress', gravity = {0, -9.81}, g1 = 0.01, g2 = 0.5 }\n"  // globals: the
-             "rock = m:rock{ density = 2000, E = 5e9, nu = 0.25 }\n"                          // console sees them
+             "rock = m:rock{ density = 2000, E = 5e9, nu = 0.25 }\n"                           // console sees them
              "b = m:add_block{ {0, 0}, {1, 0}, {1, 1}, {0, 1} }\n");
   write_file(dir / "input.txt",
              "m:step(10)\n"
@@ -244,9 +251,10 @@ TEST(Console, ReadsEvaluatesPrintsAndSurvivesErrors) {
 // dda run --frames N: every model writes a frame every N steps.
 TEST(CliFrames, FramesEveryNStepsFromTheCommandLine) {
   TempDir dir("cli_frames");
-  const auto r = run_dda("run " + quote((source_dir() / "scripts/free_fall.lua").string()) +
-                             " --quiet --out out --set t_end=0.2 --frames 10 --frame-field velocity --frame-size 160x120",
-                         dir.path);
+  const auto r =
+      run_dda("run " + quote((source_dir() / "scripts/free_fall.lua").string()) +
+                  " --quiet --out out --set t_end=0.2 --frames 10 --frame-field velocity --frame-size 160x120",
+              dir.path);
   ASSERT_EQ(r.exit_code, 0) << r.err;
   for (int i = 0; i <= 2; ++i) {
     char name[64];

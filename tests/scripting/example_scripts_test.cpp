@@ -94,7 +94,11 @@ TEST(ExampleScripts, PaperBarGeometries) {
             right = csv.column("right_edges"), right_length = csv.column("right_length");
   for (const auto& row : csv.rows) {
     EXPECT_NEAR(row[area], 20.0, 1e-9) << "model " << row[0];
-    EXPECT_NEAR(row[right_length], row[0] == 5 ? 1 / std::sin(M_PI / 3) : row[0] == 6 ? 2.0 : 1.0, 1e-8)
+    EXPECT_NEAR(row[right_length],
+                row[0] == 5   ? 1 / std::sin(M_PI / 3)
+                : row[0] == 6 ? 2.0
+                              : 1.0,
+                1e-8)
         << "model " << row[0];
   }
   EXPECT_EQ(csv.rows[0][blocks], 500);  // Model 1: 100 x 5 squares

@@ -5,8 +5,8 @@
 #include <cmath>
 
 #include "lua_support.hpp"
-#include "scripting.hpp"
 #include "script_helpers.hpp"
+#include "scripting.hpp"
 
 using namespace dda::script;
 
@@ -126,7 +126,8 @@ TEST_F(LuaApi, HistoriesAreEvaluatedOncePerStep) {
       "rock = m:rock{ density = 1000, E = 1e9, nu = 0.25 }\n"
       "b = m:add_block{ {0, 0}, {1, 0}, {1, 1}, {0, 1} }\n"
       "calls, times = 0, {}\n"
-      "load = m:point_load{ at = {0.5, 0.5}, fx = function(t) calls = calls + 1; times[#times + 1] = t; return 10 * t end,\n"
+      "load = m:point_load{ at = {0.5, 0.5}, fx = function(t) calls = calls + 1; times[#times + 1] = t; return 10 * t "
+      "end,\n"
       "                     fy = {{0, 0}, {0.05, -5}} }\n"
       "calls_before = calls\n"
       "m:step(10)\n"
@@ -294,7 +295,8 @@ TEST_F(LuaApi, SolverControlsAreReadableWritableAndChecked) {
   EXPECT_TRUE(lua_isboolean(L, -1) && !lua_toboolean(L, -1));
   lua_pop(L, 2);
   EXPECT_NE(error_of("m:controls{ predict_states = 1 }").find("predict_states"), std::string::npos);
-  EXPECT_NE(error_of("m:controls{ jacobi_refresh_tolerance = 1 }").find("'jacobi_refresh_tolerance' must lie in [0, 1), got 1"),
+  EXPECT_NE(error_of("m:controls{ jacobi_refresh_tolerance = 1 }")
+                .find("'jacobi_refresh_tolerance' must lie in [0, 1), got 1"),
             std::string::npos);
   EXPECT_NE(error_of("m:controls{ jacobi_refresh_tolerance = -0.1 }").find("must lie in [0, 1)"), std::string::npos);
   EXPECT_NE(error_of("m:controls{ patch_hops = -1 }").find("'patch_hops' must be zero (off) or positive, got -1"),
@@ -381,8 +383,9 @@ TEST_F(LuaApi, TargetFollowsAVelocityHistory) {
 // Every error names the chunk and line, the call and the argument.
 TEST_F(LuaApi, ErrorsNameTheCallAndLine) {
   run(kGrid);
-  EXPECT_NE(error_of("\nm:joint_set{ dip = 0, spacing = 1 }").find("test:2: m:joint_set: blocks were already generated"),
-            std::string::npos);
+  EXPECT_NE(
+      error_of("\nm:joint_set{ dip = 0, spacing = 1 }").find("test:2: m:joint_set: blocks were already generated"),
+      std::string::npos);
   EXPECT_NE(error_of("m:monitor{ at = {0.5, 0.5}, fields = {'sxx'}, evry = 2 }")
                 .find("test:1: m:monitor: unknown option 'evry' (did you mean 'every'?)"),
             std::string::npos);
@@ -402,9 +405,11 @@ TEST_F(LuaApi, ErrorsNameTheCallAndLine) {
             std::string::npos);
   EXPECT_NE(error_of("m:edges{ on_segment = {0, 0, 1, 1} }:fix()").find("edges:fix: the edge set is empty"),
             std::string::npos);
-  EXPECT_NE(error_of("m:edges{ on_segment = {0, 0, 0, 1} }:pressure('x')")
-                .find("edges:pressure: argument 1 (pressure) must be a number, a table of {t, value} pairs or a function of t"),
-            std::string::npos);
+  EXPECT_NE(
+      error_of("m:edges{ on_segment = {0, 0, 0, 1} }:pressure('x')")
+          .find(
+              "edges:pressure: argument 1 (pressure) must be a number, a table of {t, value} pairs or a function of t"),
+      std::string::npos);
 }
 
 // Load history functions must not change or step the model.
@@ -486,10 +491,12 @@ TEST_F(LuaApi, FramesEveryNStepsAndPlots) {
 
 TEST_F(LuaApi, RenderOptionErrors) {
   run(kTwoBlocks);
-  EXPECT_NE(error_of("m:frame{ file = 'x.png', feild = 'sigma_xx' }").find("m:frame: unknown option 'feild' (did you mean 'field'?)"),
+  EXPECT_NE(error_of("m:frame{ file = 'x.png', feild = 'sigma_xx' }")
+                .find("m:frame: unknown option 'feild' (did you mean 'field'?)"),
             std::string::npos);
   EXPECT_NE(error_of("m:frame{ file = 'x.png', field = 'sigma_zz' }").find("test:1: m:frame:"), std::string::npos);
-  EXPECT_NE(error_of("m:frames{ every = 10, on_error = 'ignore' }").find("option 'on_error' must be \"stop\" or \"continue\""),
+  EXPECT_NE(error_of("m:frames{ every = 10, on_error = 'ignore' }")
+                .find("option 'on_error' must be \"stop\" or \"continue\""),
             std::string::npos);
   EXPECT_NE(error_of("mon:plot{ field = 'sxx', file = 'p.png' }").find("monitor 'top' does not record 'sxx'"),
             std::string::npos);
