@@ -34,6 +34,7 @@ const char* kUsage =
     "  --frames N         every model writes a PNG frame every N steps into DIR/frames\n"
     "  --frames A:B:N     ... from step A to step B (B empty: to the end)\n"
     "  --frame-range MIN,MAX  their colour range in SI units (default: from the first frame)\n"
+    "  --frame-view X1,Y1,X2,Y2  the world window they show in m (default: the first frame's)\n"
     "  --movie FILE       with --frames: DIR/FILE made with ffmpeg when the run ends (if on the PATH)\n"
     "  --frame-field F    the field of those frames: sigma_xx (default), sigma_yy, tau_xy,\n"
     "                     sigma_1, von_mises, velocity, displacement, none\n"
@@ -131,6 +132,15 @@ int main(int argc, char** argv) {
       opt.session.frames_range_set = true;
       opt.session.frames_range[0] = lo;
       opt.session.frames_range[1] = hi;
+    } else if (a == "--frame-view") {
+      const char* v = value("--frame-view");
+      double q[4];
+      char tail = 0;
+      if (!v || std::sscanf(v, "%lf,%lf,%lf,%lf%c", &q[0], &q[1], &q[2], &q[3], &tail) != 4 || !(q[2] > q[0]) ||
+          !(q[3] > q[1]))
+        return usage_error("--frame-view needs X1,Y1,X2,Y2 (m) with X1 < X2 and Y1 < Y2, got '%s'", v ? v : "");
+      opt.session.frames_view_set = true;
+      for (int k = 0; k < 4; ++k) opt.session.frames_view[k] = q[k];
     } else if (a == "--movie") {
       const char* v = value("--movie");
       if (!v || !*v) return usage_error("%s needs a file name (e.g. run.mp4)", "--movie");

@@ -76,6 +76,8 @@ struct Session {
   long frames_from = 0, frames_to = -1;  // --frames FROM:TO:EVERY (steps; -1: no end)
   bool frames_range_set = false;         // --frame-range MIN,MAX
   double frames_range[2] = {0, 0};
+  bool frames_view_set = false;  // --frame-view X1,Y1,X2,Y2
+  double frames_view[4] = {0, 0, 0, 0};
   std::string frames_movie;  // --movie FILE (in the output folder)
   int models_created = 0;
   long vtu_every = 0;  // --vtu N: every model writes ParaView files every N steps into <out>/vtu

@@ -439,6 +439,8 @@ void attach_session_frames(lua_State* L, int model_idx) {
   so.from_step = s.frames_from;
   so.to_step = s.frames_to;
   if (s.frames_range_set) so.frame.range = render::ValueRange{s.frames_range[0], s.frames_range[1]};
+  if (s.frames_view_set)
+    so.frame.view = render::Box{s.frames_view[0], s.frames_view[1], s.frames_view[2], s.frames_view[3]};
   if (!s.frames_movie.empty()) {
     const std::filesystem::path movie = s.frames_movie;
     so.movie = movie.is_absolute() ? movie

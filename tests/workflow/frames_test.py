@@ -14,6 +14,10 @@ common = ["--quiet", "--set", "t_end=0.5", "--frame-field", "velocity", "--frame
 r = run(["run", script, "--out", "window", "--frames", "10:30:5"] + common, d)
 files = sorted(os.listdir(os.path.join(d, "window", "frames"))) if r.returncode == 0 else []
 check(files == ["velocity_%05d.png" % i for i in range(5)], "--frames 10:30:5: steps 10, 15, 20, 25, 30", (r.stderr, files))
+r = run(["run", script, "--out", "view", "--frames", "50", "--frame-view", "-1,-2,2,1.5"] + common, d)
+check(r.returncode == 0 and len(os.listdir(os.path.join(d, "view", "frames"))) == 2, "--frame-view", r.stderr)
+r = run(["run", script, "--out", "bad", "--frame-view", "2,0,1,1"] + common, d)
+check(r.returncode == 2 and "--frame-view needs" in r.stderr, "a view with X2 < X1 is refused", r.stderr)
 r = run(["run", script, "--out", "bad", "--frames", "30:10:5"] + common, d)
 check(r.returncode == 2 and "FROM:TO:EVERY" in r.stderr, "a window that ends before it starts is refused", r.stderr)
 
