@@ -23,15 +23,23 @@ const char* kUsage =
     "  dda run SCRIPT.lua [options] [-- ARGS...]   run a script (batch)\n"
     "  dda console [SCRIPT.lua] [options]          interactive prompt (runs SCRIPT first)\n"
     "  dda SCRIPT.lua [options]                    same as dda run\n"
+    "  dda sweep SCRIPT.lua --grid NAME=V1,V2,... [--jobs N] [--task ID | --collect] [options]\n"
+    "                                              one run per combination, a summary table\n"
+    "                                              (dda sweep --help for more)\n"
     "options:\n"
     "  --out DIR          output folder for monitor CSV files (default: out)\n"
     "  --threads N        worker threads for every model (0: every core); overrides the script\n"
     "  --set NAME=VALUE   a parameter the script reads with dda.param(\"NAME\", default)\n"
     "  --quiet            no progress line\n"
     "  --frames N         every model writes a PNG frame every N steps into DIR/frames\n"
+    "  --frames A:B:N     ... from step A to step B (B empty: to the end)\n"
+    "  --frame-range MIN,MAX  their colour range in SI units (default: from the first frame)\n"
+    "  --frame-view X1,Y1,X2,Y2  the world window they show in m (default: the first frame's)\n"
+    "  --movie FILE       with --frames: DIR/FILE made with ffmpeg when the run ends (if on the PATH)\n"
     "  --frame-field F    the field of those frames: sigma_xx (default), sigma_yy, tau_xy,\n"
     "                     sigma_1, von_mises, velocity, displacement, none\n"
     "  --frame-size WxH   their size in pixels (default 1280x720)\n"
+    "  --vtu N            every model writes ParaView files (VTU, PVD) every N steps into DIR/vtu\n"
     "exit status: 0 success, 1 error in the script, 2 bad command line, 130 interrupted (Ctrl-C)\n";
 
 int usage_error(const char* fmt, const char* arg) {
@@ -56,9 +64,11 @@ int main(int argc, char** argv) {
     return 0;
   }
   if (command == "--version") {
-    std::printf("dda 0.1 (Lua %s.%s)\n", LUA_VERSION_MAJOR, LUA_VERSION_MINOR);
+    std::printf("dda %s, commit %s (Lua %s.%s)\n", DDA_VERSION_TEXT, dda::script::commit_id(), LUA_VERSION_MAJOR,
+                LUA_VERSION_MINOR);
     return 0;
   }
+  if (command == "sweep") return dda::script::run_sweep(argc - 2, argv + 2);
   if (command == "run" || command == "console") {
     ++i;
   } else if (command.size() > 4 && command.compare(command.size() - 4, 4, ".lua") == 0) {
@@ -68,6 +78,7 @@ int main(int argc, char** argv) {
   }
 
   RunOptions opt;
+  for (int k = 0; k < argc; ++k) opt.command_line.append(k ? " " : "").append(argv[k]);
   for (; i < argc; ++i) {
     const std::string a = argv[i];
     auto value = [&](const char* name) -> const char* {
@@ -97,15 +108,43 @@ int main(int argc, char** argv) {
     } else if (a.rfind("--set=", 0) == 0 || a.rfind("--out=", 0) == 0 || a.rfind("--threads=", 0) == 0) {
       return usage_error("write '%s' with a space instead of '=' after the option", a.c_str());
     } else if (a == "--frames") {
+      // EVERY, or FROM:TO:EVERY (steps; TO empty: no end)
       const char* v = value("--frames");
-      char* end = nullptr;
-      const long n = v ? std::strtol(v, &end, 10) : -1;
-      if (!v || *end != '\0' || n < 1)
-        return usage_error("--frames needs a whole number of steps >= 1, got '%s'", v ? v : "");
+      long from = 0, to = -1, every = -1;
+      char tail = 0;
+      const bool ok = v && (std::sscanf(v, "%ld%c", &every, &tail) == 1 ||
+                            std::sscanf(v, "%ld:%ld:%ld%c", &from, &to, &every, &tail) == 3 ||
+                            (std::sscanf(v, "%ld::%ld%c", &from, &every, &tail) == 2 && (to = -1, true)));
+      if (!ok || every < 1 || from < 0 || (to >= 0 && to < from))
+        return usage_error("--frames needs EVERY or FROM:TO:EVERY (whole steps, EVERY >= 1), got '%s'", v ? v : "");
 #ifndef DDA_HAVE_RENDER
       return usage_error("%s: this dda was built without the renderer", "--frames");
 #endif
-      opt.session.frames_every = n;
+      opt.session.frames_every = every;
+      opt.session.frames_from = from;
+      opt.session.frames_to = to;
+    } else if (a == "--frame-range") {
+      const char* v = value("--frame-range");
+      double lo = 0, hi = 0;
+      char tail = 0;
+      if (!v || std::sscanf(v, "%lf,%lf%c", &lo, &hi, &tail) != 2 || !(hi > lo))
+        return usage_error("--frame-range needs MIN,MAX with MIN < MAX (SI units: Pa, m/s, m), got '%s'", v ? v : "");
+      opt.session.frames_range_set = true;
+      opt.session.frames_range[0] = lo;
+      opt.session.frames_range[1] = hi;
+    } else if (a == "--frame-view") {
+      const char* v = value("--frame-view");
+      double q[4];
+      char tail = 0;
+      if (!v || std::sscanf(v, "%lf,%lf,%lf,%lf%c", &q[0], &q[1], &q[2], &q[3], &tail) != 4 || !(q[2] > q[0]) ||
+          !(q[3] > q[1]))
+        return usage_error("--frame-view needs X1,Y1,X2,Y2 (m) with X1 < X2 and Y1 < Y2, got '%s'", v ? v : "");
+      opt.session.frames_view_set = true;
+      for (int k = 0; k < 4; ++k) opt.session.frames_view[k] = q[k];
+    } else if (a == "--movie") {
+      const char* v = value("--movie");
+      if (!v || !*v) return usage_error("%s needs a file name (e.g. run.mp4)", "--movie");
+      opt.session.frames_movie = v;
     } else if (a == "--frame-field") {
       const char* v = value("--frame-field");
       if (!v || !*v) return usage_error("%s needs a field name", "--frame-field");
@@ -125,6 +164,13 @@ int main(int argc, char** argv) {
         return usage_error("--frame-size needs WIDTHxHEIGHT (e.g. 1280x720), got '%s'", v ? v : "");
       opt.session.frames_width = w;
       opt.session.frames_height = h;
+    } else if (a == "--vtu") {
+      const char* v = value("--vtu");
+      char* end = nullptr;
+      const long n = v ? std::strtol(v, &end, 10) : -1;
+      if (!v || !*v || *end != '\0' || n < 1)
+        return usage_error("--vtu needs a whole number of steps >= 1, got '%s'", v ? v : "");
+      opt.session.vtu_every = n;
     } else if (a == "--quiet" || a == "-q") {
       opt.session.quiet = true;
     } else if (a.rfind("--", 0) == 0) {

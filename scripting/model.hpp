@@ -204,6 +204,8 @@ class ScriptModel {
   // True while load histories are being evaluated (the model must not be changed then).
   bool busy() const { return busy_; }
 
+  bool controls_logged = false;  // the run log has this model's controls
+
  private:
   void apply_loads(lua_State* L, double t);
   void record(Monitor& m);

@@ -1,7 +1,9 @@
 // The `dda` module table: dda.model{...}, dda.param(name, default),
 // dda.output(name), dda.out_dir(), dda.fields, dda.version.
+#include <cstdio>
 #include <system_error>
 
+#include "output_file.hpp"
 #include "scripting.hpp"
 #include "wrap.hpp"
 
@@ -16,6 +18,7 @@ int dda_model(lua_State* L) {
   push_new_model(L, c);
   ++session(L).models_created;
   attach_session_frames(L, lua_gettop(L));  // dda run --frames N
+  attach_session_vtu(L, lua_gettop(L));     // dda run --vtu N
   return 1;
 }
 
@@ -66,7 +69,76 @@ int dda_output(lua_State* L) {
   return 1;
 }
 
+// dda.result{name = value, ...}: results of the run (numbers, strings,
+// booleans), written to <out>/result.csv when `dda run` ends; dda sweep
+// gathers them into its summary table. Later calls add to and replace names.
+int dda_result(lua_State* L) {
+  std::string why;
+  if (!add_results(L, 1, "argument 1", why)) fail("dda.result: ", why);
+  return 0;
+}
+
 }  // namespace
+
+bool add_results(lua_State* L, int idx, const char* what, std::string& why) {
+  idx = lua_absindex(L, idx);
+  if (lua_type(L, idx) != LUA_TTABLE) {
+    why = msg(what, " must be a table {name = value, ...}, got ", type_of(L, idx));
+    return false;
+  }
+  std::map<std::string, ResultValue> add;
+  lua_pushnil(L);
+  while (lua_next(L, idx) != 0) {
+    if (lua_type(L, -2) != LUA_TSTRING) {
+      why = msg(what, ": result names must be strings, got a ", luaL_typename(L, -2), " key");
+      lua_pop(L, 2);
+      return false;
+    }
+    const std::string key = lua_tostring(L, -2);
+    ResultValue v;
+    switch (lua_type(L, -1)) {
+      case LUA_TNUMBER:
+        v.number = true;
+        v.text = lua_isinteger(L, -1) ? msg(lua_tointeger(L, -1)) : [&] {
+          char buf[40];
+          std::snprintf(buf, sizeof buf, "%.17g", lua_tonumber(L, -1));
+          return std::string(buf);
+        }();
+        break;
+      case LUA_TSTRING:
+        v.text = lua_tostring(L, -1);
+        break;
+      case LUA_TBOOLEAN:
+        v.text = lua_toboolean(L, -1) ? "true" : "false";
+        break;
+      default:
+        why = msg(what, ": result '", key, "' must be a number, a string or a boolean, got ", type_of(L, -1));
+        lua_pop(L, 2);
+        return false;
+    }
+    add[key] = std::move(v);
+    lua_pop(L, 1);
+  }
+  for (auto& [k, v] : add) session(L).results[k] = std::move(v);
+  return true;
+}
+
+bool write_results(const Session& s, std::string& why) {
+  std::string header, row;
+  for (const auto& [k, v] : s.results) {
+    header.append(header.empty() ? "" : ",").append(csv_field(k));
+    row.append(row.empty() ? "" : ",").append(csv_field(v.text));
+  }
+  try {
+    std::error_code ec;
+    std::filesystem::create_directories(s.out_dir, ec);
+    write_file_atomically(s.out_dir / "result.csv", header + "\n" + row + "\n");
+  } catch (const std::exception& e) {
+    why = msg("the results: ", e.what());
+    return false;
+  }
+  return true;
+}
 
 int open_module(lua_State* L) {
   if (luaL_getmetatable(L, kModelType) == LUA_TNIL) {
@@ -80,17 +152,30 @@ int open_module(lua_State* L) {
     register_boundaries(L);
     register_monitor(L);
     register_render(L);
+    register_vtu(L);
   } else {
     lua_pop(L, 1);
   }
-  static const luaL_Reg functions[] = {{"model", guarded<dda_model>},
-                                       {"param", guarded<dda_param>},
-                                       {"out_dir", guarded<dda_out_dir>},
-                                       {"output", guarded<dda_output>},
-                                       {nullptr, nullptr}};
-  luaL_newlib(L, functions);
+  static const Method functions[] = {
+      {"model", guarded<dda_model>, "dda.model{plane = \"stress\" | \"strain\", g0 = ..., ...controls} → Model"},
+      {"param", guarded<dda_param>,
+       "dda.param(name, default) → the --set NAME=VALUE value (a number when it reads as one, true/false when the "
+       "default is a boolean), else the default."},
+      {"out_dir", guarded<dda_out_dir>, "dda.out_dir() → the output folder (--out, default \"out\")"},
+      {"output", guarded<dda_output>,
+       "dda.output(name) → path of `name` in the output folder (created if needed), for scripts that write their own "
+       "files with io.open."},
+      {"help", guarded<dda_help>,
+       "dda.help([x]) (help in the console): help() an overview, help(f) a function in full (help(m.step)), help(x) "
+       "what an object offers (help(m)), help(\"name\") every function of that name"},
+      {"result", guarded<dda_result>,
+       "dda.result{name = value, ...}: results of the run (numbers, strings, booleans), written to <out>/result.csv "
+       "when `dda run` ends; dda sweep gathers them into its summary table. Later calls add to and replace names."},
+      {}};
+  lua_newtable(L);
+  set_methods(L, functions);
   register_render_functions(L);
-  lua_pushliteral(L, "0.1");
+  lua_pushliteral(L, DDA_VERSION_TEXT);
   lua_setfield(L, -2, "version");
   const std::string fields = field_list();
   lua_newtable(L);

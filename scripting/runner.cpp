@@ -2,9 +2,13 @@
 // traceback handler, and `dda run` (batch).
 #include <unistd.h>
 
+#include <chrono>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
+#include <thread>
 
+#include "dda_version.hpp"
 #include "lua_support.hpp"
 #include "scripting.hpp"
 
@@ -32,6 +36,28 @@ int docall(lua_State* L, int nargs, int nresults) {
   const int status = lua_pcall(L, nargs, nresults, base);
   lua_remove(L, base);
   return status;
+}
+
+// A returned table counts as results when it is plain data: no metatable,
+// string keys, number / string / boolean values. Scripts that also serve as
+// modules return other things (the paper's figure scripts return their
+// Figure object for validation_report.lua); those leave no results.
+// dda.result{...} is the strict form: anything else there is an error.
+bool is_results_table(lua_State* L, int idx) {
+  idx = lua_absindex(L, idx);
+  if (!lua_istable(L, idx)) return false;
+  if (lua_getmetatable(L, idx)) {
+    lua_pop(L, 1);
+    return false;
+  }
+  bool plain = true;
+  lua_pushnil(L);
+  while (plain && lua_next(L, idx) != 0) {
+    const int v = lua_type(L, -1);
+    plain = lua_type(L, -2) == LUA_TSTRING && (v == LUA_TNUMBER || v == LUA_TSTRING || v == LUA_TBOOLEAN);
+    lua_pop(L, plain ? 1 : 2);
+  }
+  return plain;
 }
 
 std::string pop_error(lua_State* L) {
@@ -84,12 +110,35 @@ bool run_file(lua_State* L, const std::string& path, const std::vector<std::stri
     error = pop_error(L);
     return false;
   }
-  if (docall(L, 0, 0) != LUA_OK) {
+  if (docall(L, 0, 1) != LUA_OK) {
     error = pop_error(L);
     return false;
   }
+  // return {ppv = ..., ...}: the run's results (dda sweep tabulates them).
+  if (is_results_table(L, -1)) {
+    std::string why;
+    add_results(L, lua_gettop(L), "the script's return value", why);  // cannot fail: checked above
+  }
+  lua_pop(L, 1);
   return true;
 }
+
+std::filesystem::path resolve_script(const std::string& script) {
+  const std::filesystem::path p(script);
+  std::error_code ec;
+  if (p.is_absolute() || std::filesystem::exists(p, ec)) return p;
+#ifdef DDA_SCRIPTS_FROM_BIN
+  // An installed dda: its scenes in <prefix>/share/dda/scripts.
+  const auto exe = std::filesystem::read_symlink("/proc/self/exe", ec);
+  if (!ec) {
+    const auto installed = exe.parent_path() / DDA_SCRIPTS_FROM_BIN / p;
+    if (std::filesystem::exists(installed, ec)) return installed.lexically_normal();
+  }
+#endif
+  return p;
+}
+
+const char* commit_id() { return DDA_COMMIT; }
 
 bool run_string(lua_State* L, const std::string& code, const std::string& chunkname, std::string& error) {
   if (luaL_loadbufferx(L, code.data(), code.size(), ("=" + chunkname).c_str(), "t") != LUA_OK) {
@@ -103,32 +152,79 @@ bool run_string(lua_State* L, const std::string& code, const std::string& chunkn
   return true;
 }
 
+namespace {
+
+void log_start(Session& s, const RunOptions& options) {
+  s.log.open(s.out_dir / "run.log");
+  s.log.line("==== dda run: " + (options.command_line.empty() ? options.script : options.command_line));
+  char host[256] = "?";
+  gethostname(host, sizeof host - 1);
+  s.log.line(msg("version ", DDA_VERSION_TEXT, ", commit ", DDA_COMMIT, ", Lua ", LUA_VERSION_MAJOR, ".",
+                 LUA_VERSION_MINOR, ", host ", host));
+  s.log.line(msg("script ", options.script, ", working folder ", std::filesystem::current_path().string()));
+  s.log.line(msg("threads: ",
+                 s.threads < 0    ? std::string("as the script sets them (--threads not given)")
+                 : s.threads == 0 ? std::string("every core (--threads 0)")
+                                  : msg(s.threads, " (--threads)"),
+                 "; ", std::thread::hardware_concurrency(), " hardware threads"));
+  std::string params;
+  for (const auto& [k, v] : s.params) params += " " + k + "=" + v;
+  s.log.line("parameters (--set):" + (params.empty() ? std::string(" none") : params));
+}
+
+}  // namespace
+
 int run_batch(const RunOptions& options) {
+  const auto start = std::chrono::steady_clock::now();
   Session s = options.session;
-  s.progress = !s.quiet && isatty(fileno(stderr)) && isatty(fileno(stdout));
+  if (!s.quiet) s.progress = isatty(fileno(stderr)) && isatty(fileno(stdout)) ? ProgressMode::Bar : ProgressMode::Lines;
+  if (const char* env = std::getenv("DDA_PROGRESS_SECONDS"); env && *env) s.progress_seconds = std::atof(env);
+  log_start(s, options);
   lua_State* L = new_state(std::move(s));
   if (!L) {
     std::fprintf(stderr, "dda: cannot create a Lua state (not enough memory)\n");
     return 1;
   }
+  set_run_log(&session(L).log);
   install_interrupt_handler(L);
   std::string error;
-  const bool ok = run_file(L, options.script, options.script_args, error);
+  const std::filesystem::path script = resolve_script(options.script);
+  bool ok = run_file(L, script.string(), options.script_args, error);
   const bool interrupted = interrupt_requested();
   remove_interrupt_handler();
-  for (const std::string& w : unused_params(session(L))) std::fprintf(stderr, "dda: %s\n", w.c_str());
-  lua_close(L);  // closes (and flushes) every monitor's CSV file
+  for (const std::string& w : unused_params(session(L))) warn(w.substr(w.rfind("warning: ", 0) == 0 ? 9 : 0));
+  if (!session(L).results.empty()) {
+    std::string why;
+    if (!write_results(session(L), why)) {
+      if (ok) error = why;
+      ok = false;
+    }
+  }
+  // lua_close closes (and flushes) every monitor's CSV file; the log outlives it.
+  RunLog log = std::move(session(L).log);
+  set_run_log(&log);
+  lua_close(L);
   std::fflush(stdout);
+  int status = 0;
   if (!ok) {
     std::fprintf(stderr, "dda: %s\n", error.c_str());
+    log.line("error: " + error);
+    status = 1;
     if (interrupted) {
       std::fprintf(stderr, "dda: interrupted; the monitor files hold every step computed so far\n");
-      return 130;
+      status = 130;
     }
-    return 1;
+  } else if (interrupted) {
+    status = 130;
   }
-  if (interrupted) return 130;
-  return 0;
+  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  set_run_log(nullptr);
+  log.line(msg("end: exit status ", status,
+               status == 0     ? " (ok)"
+               : status == 130 ? " (interrupted)"
+                               : " (error)",
+               " after ", wall, " s"));
+  return status;
 }
 
 }  // namespace dda::script

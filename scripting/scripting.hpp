@@ -2,10 +2,13 @@
 // The Lua layer's entry points: the `dda` module, batch runs and the console.
 #include <lua.hpp>
 
+#include <filesystem>
 #include <string>
 #include <vector>
 
 #include "session.hpp"
+
+#define DDA_VERSION_TEXT "0.1"
 
 namespace dda::script {
 
@@ -27,6 +30,7 @@ bool run_string(lua_State* L, const std::string& code, const std::string& chunkn
 
 // `dda run`: returns the process exit code (0 ok, 1 script error, 130 interrupted).
 struct RunOptions {
+  std::string command_line;  // as typed, for the run log
   std::string script;
   std::vector<std::string> script_args;
   Session session;
@@ -35,6 +39,26 @@ int run_batch(const RunOptions& options);
 
 // `dda console [SCRIPT]`
 int run_console(const RunOptions& options);
+
+// The script to run: the path as given when it names a file, else (for an
+// installed dda) the scene of that name in <prefix>/share/dda/scripts.
+std::filesystem::path resolve_script(const std::string& script);
+
+// `dda sweep SCRIPT --grid NAME=v1,v2 ...` (argv after "sweep"); returns the exit code.
+int run_sweep(int argc, char** argv);
+
+// Results (dda.result{...}, a script's return table): adds the string-keyed
+// numbers, strings and booleans of the table at idx to the session's results;
+// false and `why` for any other key or value.
+bool add_results(lua_State* L, int idx, const char* what, std::string& why);
+// Writes <out>/result.csv (a header of the names, one row of values); false and `why` if it cannot.
+bool write_results(const Session& s, std::string& why);
+
+// help([x]): prints the API's documentation (help.cpp).
+int dda_help(lua_State* L);
+
+// The commit the binary was built from ("unknown" outside git).
+const char* commit_id();
 
 // Warnings for --set names the script never read (typos), one line each.
 std::vector<std::string> unused_params(const Session& s);

@@ -1,8 +1,13 @@
 #include "session.hpp"
 
+#include <algorithm>
+#include <cerrno>
 #include <csignal>
 #include <cstdio>
+#include <cstring>
+#include <ctime>
 #include <new>
+#include <system_error>
 
 #include "lua_support.hpp"
 
@@ -90,10 +95,69 @@ void check_interrupt(const char* where_text) {
   throw Interrupted(msg("interrupted (Ctrl-C) ", where_text));
 }
 
+// ---- run log --------------------------------------------------------------------------
+
+RunLog& RunLog::operator=(RunLog&& o) noexcept {
+  if (this != &o) {
+    close();
+    file_ = o.file_;
+    path_ = std::move(o.path_);
+    o.file_ = nullptr;
+  }
+  return *this;
+}
+
+void RunLog::open(const std::filesystem::path& path) {
+  close();
+  path_ = path;
+  std::error_code ec;
+  if (path.has_parent_path()) std::filesystem::create_directories(path.parent_path(), ec);
+  file_ = std::fopen(path.c_str(), "a");
+  if (!file_) failed("cannot open");
+}
+
+void RunLog::failed(const char* what) {
+  std::fprintf(stderr, "dda: warning: %s the run log '%s': %s; the run goes on without it\n", what, path_.c_str(),
+               std::strerror(errno));
+  if (file_) std::fclose(file_);
+  file_ = nullptr;
+}
+
+void RunLog::line(const std::string& text) {
+  if (!file_) return;
+  char stamp[32];
+  const std::time_t now = std::time(nullptr);
+  std::tm tm{};
+  localtime_r(&now, &tm);
+  std::strftime(stamp, sizeof stamp, "%Y-%m-%d %H:%M:%S", &tm);
+  if (std::fprintf(file_, "%s  %s\n", stamp, text.c_str()) < 0 || std::fflush(file_) != 0) failed("cannot write");
+}
+
+void RunLog::close() {
+  if (file_ && std::fclose(file_) != 0) {
+    file_ = nullptr;
+    failed("cannot close");
+  }
+  file_ = nullptr;
+}
+
+namespace {
+RunLog* g_run_log = nullptr;
+}  // namespace
+
+void set_run_log(RunLog* log) { g_run_log = log; }
+
+void warn(const std::string& text) {
+  std::fprintf(stderr, "dda: warning: %s\n", text.c_str());
+  std::fflush(stderr);
+  if (g_run_log) g_run_log->line("warning: " + text);
+}
+
 // ---- progress -----------------------------------------------------------------------
 
 Progress::Progress(lua_State* L, double t_start, double t_end, long step_start, long step_end)
-    : enabled_(session(L).progress),
+    : mode_(session(L).progress),
+      line_seconds_(session(L).progress_seconds),
       t_start_(t_start),
       t_end_(t_end),
       step_start_(step_start),
@@ -109,16 +173,36 @@ Progress::~Progress() {
 }
 
 void Progress::update(double t, long step) {
-  if (!enabled_) return;
+  if (mode_ == ProgressMode::None) return;
   const auto now = std::chrono::steady_clock::now();
   const double elapsed = std::chrono::duration<double>(now - start_).count();
-  if (elapsed < 0.5 || std::chrono::duration<double>(now - last_).count() < 0.2) return;
-  last_ = now;
+  const double since = std::chrono::duration<double>(now - last_).count();
   const long done = step - step_start_;
-  const double rate = done / elapsed;
   double fraction = -1;
   if (t_end_ > t_start_) fraction = (t - t_start_) / (t_end_ - t_start_);
   if (step_end_ > step_start_) fraction = std::max(fraction, double(done) / double(step_end_ - step_start_));
+  if (mode_ == ProgressMode::Lines) {
+    // A 5 % mark (at most one line a second), or line_seconds_ since the last line.
+    constexpr double kSlack = 1e-9;  // t accumulates Δt: 0.05 may come out as 0.0499999...
+    const bool mark = fraction >= next_fraction_ - kSlack && (since >= 1 || line_seconds_ <= 0);
+    const bool timed = line_seconds_ > 0 && since >= line_seconds_;
+    if (!mark && !timed) return;
+    last_ = now;
+    while (fraction >= next_fraction_ - kSlack) next_fraction_ += 0.05;
+    std::fprintf(stderr, "progress: %s\n", text(t, step, elapsed, fraction).c_str());
+    std::fflush(stderr);
+    return;
+  }
+  if (elapsed < 0.5 || since < 0.2) return;
+  last_ = now;
+  std::fprintf(stderr, "\r\033[K%s", text(t, step, elapsed, fraction).c_str());
+  std::fflush(stderr);
+  drawn_ = true;
+}
+
+std::string Progress::text(double t, long step, double elapsed, double fraction) const {
+  const long done = step - step_start_;
+  const double rate = elapsed > 0 ? done / elapsed : 0;
   char eta[64] = "";
   if (fraction > 0 && fraction <= 1) {
     const double left = elapsed * (1 - fraction) / fraction;
@@ -129,11 +213,14 @@ void Progress::update(double t, long step) {
     else
       std::snprintf(eta, sizeof eta, " | ETA %.0f s", left);
   }
-  char target[48] = "";
+  char target[64] = "";
   if (t_end_ > t_start_) std::snprintf(target, sizeof target, " / %.4g s", t_end_);
-  std::fprintf(stderr, "\r\033[Kt = %.4g s%s | step %ld | %.0f steps/s%s", t, target, step, rate, eta);
-  std::fflush(stderr);
-  drawn_ = true;
+  if (mode_ == ProgressMode::Lines && fraction >= 0)
+    std::snprintf(target + std::strlen(target), sizeof target - std::strlen(target), " (%.0f %%)",
+                  100 * std::min(fraction, 1.0));
+  char line[256];
+  std::snprintf(line, sizeof line, "t = %.4g s%s | step %ld | %.0f steps/s%s", t, target, step, rate, eta);
+  return line;
 }
 
 }  // namespace dda::script

@@ -7,30 +7,89 @@
 #include <lua.hpp>
 
 #include <chrono>
+#include <cstdio>
 #include <filesystem>
 #include <map>
 #include <set>
 #include <string>
+#include <vector>
 
 namespace dda::script {
 
+// How stepping calls show their progress: a redrawn line on a terminal,
+// plain lines (at most one every `progress_seconds`, and one per 5 % done)
+// when the output goes to a file or a pipe (CI, nohup, a batch queue).
+enum class ProgressMode { None, Bar, Lines };
+
+// The run log beside the outputs (<out>/run.log): command line, version,
+// threads, parameters, each model's controls, warnings, start and end, exit
+// status. Appended to, one block per run; lines are flushed as written. A
+// log that cannot be written is reported once and then left off: it never
+// stops a run.
+class RunLog {
+ public:
+  RunLog() = default;
+  // A copy is closed (the file stays with the original): Session is copied
+  // from the command-line options before any log is opened.
+  RunLog(const RunLog& o) : path_(o.path_) {}
+  RunLog& operator=(const RunLog& o) {
+    if (this != &o) close(), path_ = o.path_;
+    return *this;
+  }
+  RunLog(RunLog&& o) noexcept : file_(o.file_), path_(std::move(o.path_)) { o.file_ = nullptr; }
+  RunLog& operator=(RunLog&& o) noexcept;
+  ~RunLog() { close(); }
+  void open(const std::filesystem::path& path);
+  bool is_open() const { return file_ != nullptr; }
+  const std::filesystem::path& path() const { return path_; }
+  void line(const std::string& text);  // "2026-11-25 02:50:01  text"
+  void close();
+
+ private:
+  void failed(const char* what);
+  std::FILE* file_ = nullptr;
+  std::filesystem::path path_;
+};
+
+// A value a script returns for the batch table (return {ppv = ...} or dda.result{...}).
+struct ResultValue {
+  std::string text;  // as written in the summary CSV
+  bool number = false;
+};
+
 struct Session {
   std::filesystem::path out_dir = "out";
-  std::map<std::string, std::string> params;  // --set NAME=VALUE
-  std::set<std::string> params_read;          // names the script asked for
-  int threads = -1;                           // --threads N (−1: leave to the script)
-  bool quiet = false;                         // --quiet
-  bool progress = false;                      // draw the progress line (a terminal, not quiet)
-  std::set<std::string> files;                // CSV files opened in this run (no two monitors share one)
-  std::string script;                         // the script being run (for messages)
+  std::map<std::string, std::string> params;   // --set NAME=VALUE
+  std::set<std::string> params_read;           // names the script asked for
+  int threads = -1;                            // --threads N (−1: leave to the script)
+  bool quiet = false;                          // --quiet
+  ProgressMode progress = ProgressMode::None;  // how stepping shows progress (see ProgressMode)
+  double progress_seconds = 10;                // Lines: at most one line this often (plus one per 5 %)
+  std::set<std::string> files;                 // CSV files opened in this run (no two monitors share one)
+  std::string script;                          // the script being run (for messages)
   // --frames N [--frame-field F] [--frame-size WxH]: every model the script
   // creates writes a frame every N steps into <out>/frames (frames_2, ... for
   // later models). 0: none.
   long frames_every = 0;
   std::string frames_field = "sigma_xx";
   int frames_width = 1280, frames_height = 720;
+  long frames_from = 0, frames_to = -1;  // --frames FROM:TO:EVERY (steps; -1: no end)
+  bool frames_range_set = false;         // --frame-range MIN,MAX
+  double frames_range[2] = {0, 0};
+  bool frames_view_set = false;  // --frame-view X1,Y1,X2,Y2
+  double frames_view[4] = {0, 0, 0, 0};
+  std::string frames_movie;  // --movie FILE (in the output folder)
   int models_created = 0;
+  long vtu_every = 0;  // --vtu N: every model writes ParaView files every N steps into <out>/vtu
+  RunLog log;          // dda run: <out>/run.log
+  std::map<std::string, ResultValue> results;  // the run's results (dda.result, the script's return table)
 };
+
+// Prints "dda: warning: text" on stderr and writes it to the run log of
+// `dda run` (set_run_log; warnings come from places that have no Lua state,
+// e.g. a frame sequence finishing its movie while the state closes).
+void warn(const std::string& text);
+void set_run_log(RunLog* log);
 
 // The session of this Lua state (created with defaults on first use).
 Session& session(lua_State* L);
@@ -50,9 +109,10 @@ void clear_interrupt();
 void check_interrupt(const char* where_text);
 
 // ---- Progress line ------------------------------------------------------------
-// "t = 1.20e-03 s / 3.00e-03 s | step 600 | 850 steps/s | ETA 2 s" on stderr,
-// redrawn at most 5 times a second, only when Session::progress is set, and
-// erased when the stepping call ends.
+// "t = 1.20e-03 s / 3.00e-03 s | step 600 | 850 steps/s | ETA 2 s" on stderr:
+// on a terminal redrawn at most 5 times a second and erased when the stepping
+// call ends; otherwise as plain lines "progress: t = ... (40 %) ...", one each
+// Session::progress_seconds and one per 5 % done (at most one a second).
 class Progress {
  public:
   Progress(lua_State* L, double t_start, double t_end, long step_start, long step_end);
@@ -60,11 +120,14 @@ class Progress {
   void update(double t, long step);
 
  private:
-  bool enabled_ = false;
+  ProgressMode mode_ = ProgressMode::None;
+  double line_seconds_ = 10;
   bool drawn_ = false;
+  double next_fraction_ = 0.05;  // Lines: the next 5 % mark
   double t_start_, t_end_;
   long step_start_, step_end_;
   std::chrono::steady_clock::time_point start_, last_;
+  std::string text(double t, long step, double elapsed, double fraction) const;
 };
 
 }  // namespace dda::script

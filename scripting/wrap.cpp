@@ -64,11 +64,36 @@ int index_dispatch(lua_State* L) {
 
 }  // namespace
 
-void define_type(lua_State* L, const char* type, const luaL_Reg* methods, const luaL_Reg* meta,
+namespace {
+const char kDocsKey = 0;  // its address keys the documentation table in the registry
+}  // namespace
+
+void push_docs(lua_State* L) {
+  if (lua_rawgetp(L, LUA_REGISTRYINDEX, &kDocsKey) == LUA_TTABLE) return;
+  lua_pop(L, 1);
+  lua_newtable(L);
+  lua_pushvalue(L, -1);
+  lua_rawsetp(L, LUA_REGISTRYINDEX, &kDocsKey);
+}
+
+void set_methods(lua_State* L, const Method* methods) {
+  const int t = lua_absindex(L, -1);
+  push_docs(L);
+  for (const Method* m = methods; m && m->name; ++m) {
+    lua_pushcfunction(L, m->func);
+    lua_pushvalue(L, -1);
+    lua_setfield(L, t, m->name);
+    lua_pushstring(L, m->doc ? m->doc : m->name);
+    lua_rawset(L, -3);  // docs[function] = text
+  }
+  lua_pop(L, 1);
+}
+
+void define_type(lua_State* L, const char* type, const Method* methods, const luaL_Reg* meta,
                  lua_CFunction index_fallback) {
   luaL_newmetatable(L, type);
   lua_newtable(L);
-  if (methods) luaL_setfuncs(L, methods, 0);
+  if (methods) set_methods(L, methods);
   lua_pushvalue(L, -1);
   lua_setfield(L, -3, "__methods");
   if (index_fallback) {
@@ -82,12 +107,14 @@ void define_type(lua_State* L, const char* type, const luaL_Reg* methods, const 
   lua_pop(L, 1);
 }
 
-void add_model_methods(lua_State* L, const luaL_Reg* methods) {
-  luaL_getmetatable(L, kModelType);
+void add_methods(lua_State* L, const char* type, const Method* methods) {
+  luaL_getmetatable(L, type);
   lua_getfield(L, -1, "__methods");
-  luaL_setfuncs(L, methods, 0);
+  set_methods(L, methods);
   lua_pop(L, 2);
 }
+
+void add_model_methods(lua_State* L, const Method* methods) { add_methods(L, kModelType, methods); }
 
 // ---- models ---------------------------------------------------------------------------
 

@@ -47,12 +47,29 @@ inline BlockId* set_blocks(Handle* h) { return reinterpret_cast<BlockId*>(h + 1)
 inline EdgeRef* set_edges(Handle* h) { return reinterpret_cast<EdgeRef*>(h + 1); }
 
 // ---- type registration -------------------------------------------------------
+// A function of the API with its documentation: the first line is the call
+// and what it returns, as help() lists it; help(f) prints all of it. The
+// same tables register the functions and their help, so the two cannot
+// drift. Arrays end with {}.
+struct Method {
+  const char* name = nullptr;
+  lua_CFunction func = nullptr;
+  const char* doc = nullptr;
+};
+
+// Registers `methods` into the table on top of the stack, and their docs.
+void set_methods(lua_State* L, const Method* methods);
+// Pushes the table function → documentation (created on first use).
+void push_docs(lua_State* L);
+
 // Creates the metatable `type` (with __name) whose __index is a table of
 // `methods` (plus `index_fallback`, called for keys that are not methods, if
 // given), and the extra metamethods in `meta`. Every function must already be
 // wrapped in guarded<>.
-void define_type(lua_State* L, const char* type, const luaL_Reg* methods, const luaL_Reg* meta,
+void define_type(lua_State* L, const char* type, const Method* methods, const luaL_Reg* meta,
                  lua_CFunction index_fallback = nullptr);
+// Adds methods to an existing type's method table.
+void add_methods(lua_State* L, const char* type, const Method* methods);
 
 // ---- models --------------------------------------------------------------------
 ScriptModel& push_new_model(lua_State* L, const Controls& controls);  // pushes a dda.Model
@@ -129,8 +146,11 @@ void register_render(lua_State* L);            // model render methods, when the
 void register_render_functions(lua_State* L);  // dda.plot into the module table at the top
 // The frame sequence `dda run --frames N` asks for, on the new model at model_idx.
 void attach_session_frames(lua_State* L, int model_idx);
+void register_vtu(lua_State* L);  // m:vtu and dda.Vtu (wrap_vtu.cpp)
+// The VTU series `dda run --vtu N` asks for, on the new model at model_idx.
+void attach_session_vtu(lua_State* L, int model_idx);
 
 // Adds functions to dda.Model's method table (used by wrap_geometry.cpp, wrap_render.cpp).
-void add_model_methods(lua_State* L, const luaL_Reg* methods);
+void add_model_methods(lua_State* L, const Method* methods);
 
 }  // namespace dda::script

@@ -389,39 +389,53 @@ int bs_tostring(lua_State* L) {
 }  // namespace
 
 void register_block(lua_State* L) {
-  static const luaL_Reg model_methods[] = {{"add_block", guarded<m_add_block>},     {"block", guarded<m_block>},
-                                           {"block_at", guarded<m_block_at>},       {"blocks", guarded<m_blocks>},
-                                           {"block_count", guarded<m_block_count>}, {nullptr, nullptr}};
+  static const Method model_methods[] = {
+      {"add_block", guarded<m_add_block>,
+       "m:add_block{{x, y}, ... | polygon = {...}, rock = r, joint = j | joints = {j1, j2, ...}} → Block"},
+      {"block", guarded<m_block>, "m:block(id) → Block (ids are the engine's, from 0)"},
+      {"block_at", guarded<m_block_at>, "m:block_at(x, y) or m:block_at{x, y} → Block or nil"},
+      {"blocks", guarded<m_blocks>,
+       "m:blocks{in_box = {x1, y1, x2, y2}, containing = {x, y}, rock = r, where = f} → BlockSet (no table: every "
+       "block). Criteria combine with \"and\"."},
+      {"block_count", guarded<m_block_count>, "m:block_count() → the number of blocks"},
+      {}};
   add_model_methods(L, model_methods);
 
-  static const luaL_Reg block_methods[] = {{"id", guarded<b_id>},
-                                           {"centroid", guarded<b_centroid>},
-                                           {"area", guarded<b_area>},
-                                           {"mass", guarded<b_mass>},
-                                           {"rock", guarded<b_rock>},
-                                           {"vertices", guarded<b_vertices>},
-                                           {"edges", guarded<b_edges>},
-                                           {"stress", guarded<b_stress>},
-                                           {"velocity", guarded<b_velocity>},
-                                           {"velocity_at", guarded<b_velocity_at>},
-                                           {"displacement", guarded<b_displacement>},
-                                           {"contains", guarded<b_contains>},
-                                           {"set_velocity", guarded<b_set_velocity>},
-                                           {"set_stress", guarded<b_set_stress>},
-                                           {"fix", guarded<b_fix>},
-                                           {nullptr, nullptr}};
+  static const Method block_methods[] = {
+      {"id", guarded<b_id>, "b:id() → the block's engine id (from 0)"},
+      {"centroid", guarded<b_centroid>, "b:centroid() → x, y of the centroid now"},
+      {"area", guarded<b_area>, "b:area() → area (m²)"},
+      {"mass", guarded<b_mass>, "b:mass() → mass (kg per unit thickness)"},
+      {"rock", guarded<b_rock>, "b:rock() → its RockMaterial"},
+      {"vertices", guarded<b_vertices>, "b:vertices() → {{x, y}, ...}: the outline now, counter-clockwise"},
+      {"edges", guarded<b_edges>, "b:edges() → EdgeSet of its edges"},
+      {"stress", guarded<b_stress>,
+       "b:stress() → sxx, syy, txy (Pa, tension positive; constant over a first-order block)"},
+      {"velocity", guarded<b_velocity>, "b:velocity() → vx, vy, ω of the centroid (rad/s)"},
+      {"velocity_at", guarded<b_velocity_at>, "b:velocity_at(x, y) → vx, vy of the block's material at a point (m/s)"},
+      {"displacement", guarded<b_displacement>, "b:displacement() → ux, uy of the centroid since the start (m)"},
+      {"contains", guarded<b_contains>, "b:contains(x, y) → whether the point lies inside the block"},
+      {"set_velocity", guarded<b_set_velocity>,
+       "b:set_velocity(vx, vy [, ω]): the initial (or current) velocity (m/s, rad/s)"},
+      {"set_stress", guarded<b_set_stress>,
+       "b:set_stress(sxx, syy [, txy]): the initial stress (Pa, tension positive)"},
+      {"fix", guarded<b_fix>, "b:fix() (every vertex) or b:fix(x, y) → number of fixed points added"},
+      {}};
   static const luaL_Reg block_meta[] = {{"__eq", block_eq}, {"__tostring", block_tostring}, {nullptr, nullptr}};
   define_type(L, kBlockType, block_methods, block_meta);
 
-  static const luaL_Reg set_methods[] = {{"count", guarded<bs_count>},
-                                         {"ids", guarded<bs_ids>},
-                                         {"area", guarded<bs_area>},
-                                         {"edges", guarded<bs_edges>},
-                                         {"set_velocity", guarded<bs_set_velocity>},
-                                         {"set_stress", guarded<bs_set_stress>},
-                                         {"fix", guarded<bs_fix>},
-                                         {"filter", guarded<bs_filter>},
-                                         {nullptr, nullptr}};
+  static const Method set_methods[] = {
+      {"count", guarded<bs_count>, "blocks:count() → the number of blocks in the set (also #blocks)"},
+      {"ids", guarded<bs_ids>, "blocks:ids() → {id, ...}: their engine ids"},
+      {"area", guarded<bs_area>, "blocks:area() → their total area (m²)"},
+      {"edges", guarded<bs_edges>, "blocks:edges() → EdgeSet of every edge of the set's blocks"},
+      {"set_velocity", guarded<bs_set_velocity>,
+       "blocks:set_velocity(vx, vy [, ω]): the same velocity for every block of the set"},
+      {"set_stress", guarded<bs_set_stress>,
+       "blocks:set_stress(sxx, syy [, txy]): the same initial stress for every block (Pa)"},
+      {"fix", guarded<bs_fix>, "blocks:fix([x, y]) → number of fixed points added (at (x, y), or at every vertex)"},
+      {"filter", guarded<bs_filter>, "blocks:filter(function(b) return ... end) → BlockSet"},
+      {}};
   static const luaL_Reg set_meta[] = {{"__len", bs_len}, {"__tostring", bs_tostring}, {nullptr, nullptr}};
   define_type(L, kBlockSetType, set_methods, set_meta, guarded<bs_index>);
 }

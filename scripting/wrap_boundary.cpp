@@ -15,13 +15,6 @@ namespace {
 constexpr const char* kBoundaryType = "dda.Boundary";
 constexpr const char* kTargetType = "dda.Target";
 
-void add_methods(lua_State* L, const char* type, const luaL_Reg* methods) {
-  luaL_getmetatable(L, type);
-  lua_getfield(L, -1, "__methods");
-  luaL_setfuncs(L, methods, 0);
-  lua_pop(L, 2);
-}
-
 struct EdgesSelf {
   ScriptModel* model;
   std::vector<EdgeRef> edges;
@@ -266,22 +259,38 @@ int tg_tostring(lua_State* L) {
 }  // namespace
 
 void register_boundaries(lua_State* L) {
-  static const luaL_Reg edge_methods[] = {{"viscous_boundary", guarded<es_viscous>},
-                                          {"spring_boundary", guarded<es_spring>},
-                                          {"target", guarded<es_target>},
-                                          {nullptr, nullptr}};
+  static const Method edge_methods[] = {
+      {"viscous_boundary", guarded<es_viscous>, "edges:viscous_boundary() → Boundary"},
+      {"spring_boundary", guarded<es_spring>,
+       "edges:spring_boundary{p = stiffness, per_length = true} → Boundary (per_length: Eq. 22, spring p·l at each "
+       "end; false: Eq. 21, p alone)"},
+      {"target", guarded<es_target>,
+       "edges:target{displacement = h | velocity = h, direction = {dx, dy}} → Target. A target at each end point of "
+       "each edge (once per block vertex); without a direction each point moves along the edge normal into its block "
+       "(the mean of its edges' normals where two edges of the set meet)."},
+      {}};
   add_methods(L, kEdgeSetType, edge_methods);
-  static const luaL_Reg model_methods[] = {{"target", guarded<m_target>}, {nullptr, nullptr}};
+  static const Method model_methods[] = {
+      {"target", guarded<m_target>,
+       "m:target{at = {x, y}, block = b, direction = {dx, dy}, displacement = h | velocity = h} → Target"},
+      {}};
   add_model_methods(L, model_methods);
-  static const luaL_Reg bd_methods[] = {
-      {"force", guarded<bd_force>}, {"point_forces", guarded<bd_point_forces>}, {nullptr, nullptr}};
+  static const Method bd_methods[] = {
+      {"force", guarded<bd_force>,
+       "boundary:force() → fx, fy: the total force its points exerted in the last step (N per unit thickness)"},
+      {"point_forces", guarded<bd_point_forces>,
+       "boundary:point_forces() → {{fx, fy}, ...}, two points per edge in edge order"},
+      {}};
   static const luaL_Reg bd_meta[] = {{"__tostring", bd_tostring}, {nullptr, nullptr}};
   define_type(L, kBoundaryType, bd_methods, bd_meta);
-  static const luaL_Reg tg_methods[] = {{"set", guarded<tg_set>},
-                                        {"displacement", guarded<tg_displacement>},
-                                        {"value", guarded<tg_value>},
-                                        {"count", guarded<tg_count>},
-                                        {nullptr, nullptr}};
+  static const Method tg_methods[] = {
+      {"set", guarded<tg_set>, "target:set{displacement = ... | velocity = ...}"},
+      {"displacement", guarded<tg_displacement>,
+       "target:displacement([i]) → ux, uy of point i (default: the mean over its points)"},
+      {"value", guarded<tg_value>,
+       "target:value([i]) → tx, ty: the target displacement applied in the last step at point i (default 1)"},
+      {"count", guarded<tg_count>, "target:count() → the number of target points"},
+      {}};
   static const luaL_Reg tg_meta[] = {{"__tostring", tg_tostring}, {nullptr, nullptr}};
   define_type(L, kTargetType, tg_methods, tg_meta);
 }

@@ -174,11 +174,21 @@ int es_tostring(lua_State* L) {
 }  // namespace
 
 void register_edges(lua_State* L) {
-  static const luaL_Reg model_methods[] = {{"edges", guarded<m_edges>}, {nullptr, nullptr}};
+  static const Method model_methods[] = {
+      {"edges", guarded<m_edges>,
+       "m:edges{on_segment = {x1, y1, x2, y2}, in_box = {x1, y1, x2, y2}, boundary = \"domain\" | \"hole\" | \"any\", "
+       "hole = h, joint = j, block = b, tol = d} → EdgeSet"},
+      {}};
   add_model_methods(L, model_methods);
-  static const luaL_Reg methods[] = {{"count", guarded<es_count>},       {"length", guarded<es_length>},
-                                     {"blocks", guarded<es_blocks>},     {"fix", guarded<es_fix>},
-                                     {"pressure", guarded<es_pressure>}, {nullptr, nullptr}};
+  static const Method methods[] = {
+      {"count", guarded<es_count>, "edges:count() → the number of edges (also #edges)"},
+      {"length", guarded<es_length>, "edges:length() → their total length (m)"},
+      {"blocks", guarded<es_blocks>, "edges:blocks() → BlockSet of the distinct blocks the edges belong to"},
+      {"fix", guarded<es_fix>,
+       "edges:fix(): fixed points at both end points of every edge (once per block vertex): the Fixed boundary."},
+      {"pressure", guarded<es_pressure>,
+       "edges:pressure(p) → Pressure. p: number, {{t, p}, ...} or function(t); Pa, positive pushes into the blocks."},
+      {}};
   static const luaL_Reg meta[] = {{"__len", es_len}, {"__tostring", es_tostring}, {nullptr, nullptr}};
   define_type(L, kEdgeSetType, methods, meta, guarded<es_index>);
 }

@@ -239,16 +239,22 @@ int hole_tostring(lua_State* L) {
 }  // namespace
 
 void register_geometry(lua_State* L) {
-  static const luaL_Reg model_methods[] = {{"domain", guarded<m_domain>},
-                                           {"hole", guarded<m_hole>},
-                                           {"region", guarded<m_region>},
-                                           {"joint_set", guarded<m_joint_set>},
-                                           {"joint_line", guarded<m_joint_line>},
-                                           {"generate", guarded<m_generate>},
-                                           {nullptr, nullptr}};
+  static const Method model_methods[] = {
+      {"domain", guarded<m_domain>, "m:domain{polygon | box | points..., rock = r, joint = j}"},
+      {"hole", guarded<m_hole>, "m:hole{polygon | box | circle | points..., segments = 32, joint = j} → dda.Hole"},
+      {"region", guarded<m_region>, "m:region{polygon | box | points..., rock = r}"},
+      {"joint_set", guarded<m_joint_set>,
+       "m:joint_set{dip, spacing, origin, joint, trace, bridge, spacing_sd, dip_sd, trace_sd, seed} → set number"},
+      {"joint_line", guarded<m_joint_line>,
+       "m:joint_line{from = {x, y}, to = {x, y}, joint = j}  or  m:joint_line{{x1, y1}, {x2, y2}, joint = j}"},
+      {"generate", guarded<m_generate>,
+       "m:generate{min_area, slivers = \"merge\" | \"error\", snap, inner_cut = joint} → BlockSet, info"},
+      {}};
   add_model_methods(L, model_methods);
-  static const luaL_Reg hole_methods[] = {
-      {"edges", guarded<hole_edges>}, {"number", guarded<hole_number>}, {nullptr, nullptr}};
+  static const Method hole_methods[] = {
+      {"edges", guarded<hole_edges>, "hole:edges() → EdgeSet of the hole's boundary edges (after m:generate())."},
+      {"number", guarded<hole_number>, "hole:number() → 1-based hole number (as in messages: \"hole 1\")"},
+      {}};
   static const luaL_Reg hole_meta[] = {{"__tostring", hole_tostring}, {nullptr, nullptr}};
   define_type(L, kHoleType, hole_methods, hole_meta);
 }

@@ -205,15 +205,26 @@ int pr_tostring(lua_State* L) {
 }  // namespace
 
 void register_loads(lua_State* L) {
-  static const luaL_Reg model_methods[] = {
-      {"point_load", guarded<m_point_load>}, {"fix", guarded<m_fix>}, {nullptr, nullptr}};
+  static const Method model_methods[] = {
+      {"point_load", guarded<m_point_load>,
+       "m:point_load{at = {x, y}, block = b, force = ... | fx = ..., fy = ...} → PointLoad"},
+      {"fix", guarded<m_fix>,
+       "m:fix(x, y [, block]) or m:fix{x, y} → adds a fixed point (a stiff spring holding that material point where it "
+       "starts)."},
+      {}};
   add_model_methods(L, model_methods);
-  static const luaL_Reg pl_methods[] = {
-      {"set", guarded<pl_set>}, {"force", guarded<pl_force>}, {"block", guarded<pl_block>}, {nullptr, nullptr}};
+  static const Method pl_methods[] = {
+      {"set", guarded<pl_set>, "load:set(fx, fy) or load:set{force = ... | fx = ..., fy = ...}"},
+      {"force", guarded<pl_force>, "load:force() → fx, fy applied in the last (or next) step"},
+      {"block", guarded<pl_block>, "load:block() → the Block the load acts on"},
+      {}};
   static const luaL_Reg pl_meta[] = {{"__tostring", pl_tostring}, {nullptr, nullptr}};
   define_type(L, kPointLoadType, pl_methods, pl_meta);
-  static const luaL_Reg pr_methods[] = {
-      {"set", guarded<pr_set>}, {"value", guarded<pr_value>}, {"edges", guarded<pr_edges>}, {nullptr, nullptr}};
+  static const Method pr_methods[] = {
+      {"set", guarded<pr_set>, "pressure:set(p): a number, {{t, p}, ...} or function(t)"},
+      {"value", guarded<pr_value>, "pressure:value() → the pressure applied in the last (or next) step (Pa)"},
+      {"edges", guarded<pr_edges>, "pressure:edges() → the EdgeSet it acts on"},
+      {}};
   static const luaL_Reg pr_meta[] = {{"__tostring", pr_tostring}, {nullptr, nullptr}};
   define_type(L, kPressureType, pr_methods, pr_meta);
 }

@@ -171,12 +171,15 @@ int joint_tostring(lua_State* L) {
 }  // namespace
 
 void register_materials(lua_State* L) {
-  static const luaL_Reg model_methods[] = {{"rock", guarded<m_rock>},
-                                           {"joint", guarded<m_joint>},
-                                           {"default_joint", guarded<m_default_joint>},
-                                           {nullptr, nullptr}};
+  static const Method model_methods[] = {
+      {"rock", guarded<m_rock>, "m:rock{density = ρ, E = E, nu = ν} → RockMaterial"},
+      {"joint", guarded<m_joint>,
+       "m:joint{friction = φ (degrees), cohesion = c (Pa), tension = σt (Pa)} → JointMaterial"},
+      {"default_joint", guarded<m_default_joint>,
+       "m:default_joint() → joint material 0 (φ = 30°, c = 0, σt = 0 unless changed)"},
+      {}};
   add_model_methods(L, model_methods);
-  static const luaL_Reg no_methods[] = {{nullptr, nullptr}};
+  static const Method no_methods[] = {{}};
   static const luaL_Reg rock_meta[] = {
       {"__newindex", guarded<rock_newindex>}, {"__eq", material_eq}, {"__tostring", rock_tostring}, {nullptr, nullptr}};
   define_type(L, kRockType, no_methods, rock_meta, guarded<rock_index>);

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <map>
 
 #include "session.hpp"
 #include "wrap.hpp"
@@ -172,6 +173,38 @@ void stop_if_interrupted(const World& w) {
   if (interrupt_requested()) check_interrupt(where_now(w).c_str());
 }
 
+// The run log gets each model's controls at its first stepping call (what
+// the script set by then), as the key = value pairs of m:controls().
+void log_controls_once(lua_State* L, ScriptModel& m) {
+  Session& s = session(L);
+  if (!s.log.is_open() || m.controls_logged) return;
+  m.controls_logged = true;
+  Controls c = m.world().controls();
+  if (s.threads >= 0) c.threads = s.threads;
+  push_controls(L, c);
+  std::map<std::string, std::string> items;
+  lua_pushnil(L);
+  while (lua_next(L, -2) != 0) {
+    std::string v;
+    if (lua_type(L, -1) == LUA_TTABLE) {
+      lua_rawgeti(L, -1, 1);
+      lua_rawgeti(L, -2, 2);
+      v = msg("{", lua_tonumber(L, -2), ", ", lua_tonumber(L, -1), "}");
+      lua_pop(L, 2);
+    } else if (lua_type(L, -1) == LUA_TBOOLEAN) {
+      v = lua_toboolean(L, -1) ? "true" : "false";
+    } else {
+      v = lua_tostring(L, -1);
+    }
+    items[lua_tostring(L, -2)] = v;
+    lua_pop(L, 1);
+  }
+  lua_pop(L, 1);
+  std::string text;
+  for (const auto& [k, v] : items) text += " " + k + "=" + v;
+  s.log.line(msg("model: ", m.world().block_count(), " blocks; controls:", text));
+}
+
 // The stepping loop shared by m:step, m:run_until and m:run. Lua runs only
 // between steps: load histories inside ScriptModel::step (before
 // World::step), the callback after the step's monitors are written.
@@ -180,6 +213,7 @@ void run_loop(lua_State* L, ScriptModel& m, const RunPlan& plan) {
   const long s0 = w.step_count();
   const double t0 = w.time();
   stop_if_interrupted(w);
+  log_controls_once(L, m);
   Progress progress(L, t0, plan.t_end >= 0 ? plan.t_end : 0, s0, plan.steps >= 0 ? s0 + plan.steps : 0);
   for (;;) {
     if (plan.steps >= 0 && w.step_count() - s0 >= plan.steps) break;
@@ -416,23 +450,28 @@ int m_tostring(lua_State* L) {
 }  // namespace
 
 void register_model(lua_State* L) {
-  static const luaL_Reg methods[] = {{"controls", guarded<m_controls>},
-                                     {"gravity", guarded<m_gravity>},
-                                     {"step", guarded<m_step>},
-                                     {"run_until", guarded<m_run_until>},
-                                     {"run", guarded<m_run>},
-                                     {"time", guarded<m_time>},
-                                     {"steps", guarded<m_steps>},
-                                     {"dt", guarded<m_dt>},
-                                     {"suggested_dt", guarded<m_suggested_dt>},
-                                     {"stats", guarded<m_stats>},
-                                     {"totals", guarded<m_totals>},
-                                     {"hash", guarded<m_hash>},
-                                     {"half_height", guarded<m_half_height>},
-                                     {"contacts", guarded<m_contacts>},
-                                     {"contact_summary", guarded<m_contact_summary>},
-                                     {"close", guarded<m_close>},
-                                     {nullptr, nullptr}};
+  static const Method methods[] = {
+      {"controls", guarded<m_controls>, "m:controls{...} sets; m:controls() returns the current controls as a table."},
+      {"gravity", guarded<m_gravity>, "m:gravity(gx, gy)"},
+      {"step", guarded<m_step>, "m:step([n = 1]) → t, step"},
+      {"run_until", guarded<m_run_until>, "m:run_until(t) → t, step"},
+      {"run", guarded<m_run>, "m:run{time = t | steps = n, every = N, callback = f} → t, step"},
+      {"time", guarded<m_time>, "m:time() → simulated time (s)"},
+      {"steps", guarded<m_steps>, "m:steps() → steps taken"},
+      {"dt", guarded<m_dt>, "m:dt() → the last step's time step (s)"},
+      {"suggested_dt", guarded<m_suggested_dt>, "m:suggested_dt() → the time step the paper's Eqs. 1-3 give (s)"},
+      {"stats", guarded<m_stats>,
+       "m:stats() → the last step's figures {dt, open_close_iterations, cg_iterations, step_cuts, contacts, t_solve, "
+       "...}"},
+      {"totals", guarded<m_totals>,
+       "m:totals() → {steps, step_cuts, open_close_iterations, cg_iterations, wall_seconds, steps_per_second}"},
+      {"hash", guarded<m_hash>, "m:hash() → a hex hash of the whole state (the same for any thread count)"},
+      {"half_height", guarded<m_half_height>,
+       "m:half_height() → half the model height (m): the length g2 and contact_tolerance scale with"},
+      {"contacts", guarded<m_contacts>, "m:contacts{state = \"sliding\", block = b} → array of contact tables"},
+      {"contact_summary", guarded<m_contact_summary>, "m:contact_summary() → {total, open, sliding, locked, intact}"},
+      {"close", guarded<m_close>, "m:close(): frees the model now; every handle into it becomes invalid."},
+      {}};
   static const luaL_Reg meta[] = {{"__gc", m_gc}, {"__tostring", m_tostring}, {nullptr, nullptr}};
   define_type(L, kModelType, methods, meta);
 }

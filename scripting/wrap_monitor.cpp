@@ -273,17 +273,30 @@ int mon_tostring(lua_State* L) {
 }  // namespace
 
 void register_monitor(lua_State* L) {
-  static const luaL_Reg model_methods[] = {
-      {"monitor", guarded<m_monitor>}, {"monitors", guarded<m_monitors>}, {nullptr, nullptr}};
+  static const Method model_methods[] = {
+      {"monitor", guarded<m_monitor>,
+       "m:monitor{at = {x, y}, fields = {\"sxx\", ...}, every = 1, name = \"centre\", block = b, csv = true} → "
+       "Monitor"},
+      {"monitors", guarded<m_monitors>, "m:monitors() → list of every monitor of the model"},
+      {}};
   add_model_methods(L, model_methods);
-  static const luaL_Reg methods[] = {{"name", guarded<mon_name>},         {"file", guarded<mon_file>},
-                                     {"fields", guarded<mon_fields>},     {"count", guarded<mon_count>},
-                                     {"times", guarded<mon_times>},       {"steps", guarded<mon_steps>},
-                                     {"series", guarded<mon_series>},     {"value", guarded<mon_value>},
-                                     {"last", guarded<mon_last>},         {"max", guarded<mon_max>},
-                                     {"min", guarded<mon_min>},           {"peak", guarded<mon_peak>},
-                                     {"row", guarded<mon_row>},           {"block", guarded<mon_block>},
-                                     {"position", guarded<mon_position>}, {nullptr, nullptr}};
+  static const Method methods[] = {
+      {"name", guarded<mon_name>, "monitor:name() → its name"},
+      {"file", guarded<mon_file>, "monitor:file() → the path of its CSV file (nil with csv = false)"},
+      {"fields", guarded<mon_fields>, "monitor:fields() → {\"sxx\", ...}: the fields it records"},
+      {"count", guarded<mon_count>, "monitor:count() → the number of recorded rows"},
+      {"times", guarded<mon_times>, "monitor:times() → {t1, t2, ...}: the time of each row (s)"},
+      {"steps", guarded<mon_steps>, "monitor:steps() → {n1, n2, ...}: the step of each row"},
+      {"series", guarded<mon_series>, "monitor:series(\"sxx\") → {v1, v2, ...} (one per recorded row)"},
+      {"value", guarded<mon_value>, "monitor:value(\"sxx\") → the value now (not necessarily recorded)"},
+      {"last", guarded<mon_last>, "monitor:last(\"sxx\") → last recorded value, its time (nil when nothing recorded)"},
+      {"max", guarded<mon_max>, "monitor:max(\"sxx\") → value, time; monitor:min; monitor:peak (largest |value|)"},
+      {"min", guarded<mon_min>, "monitor:min(\"sxx\") → the smallest recorded value, its time"},
+      {"peak", guarded<mon_peak>, "monitor:peak(\"sxx\") → the recorded value of largest |value|, its time"},
+      {"row", guarded<mon_row>, "monitor:row(i) → {step = , time = , sxx = , ...}; i from 1, negative from the end"},
+      {"block", guarded<mon_block>, "monitor:block() → the Block its material point belongs to"},
+      {"position", guarded<mon_position>, "monitor:position() → x, y of the material point now"},
+      {}};
   static const luaL_Reg meta[] = {{"__tostring", mon_tostring}, {nullptr, nullptr}};
   define_type(L, kMonitorType, methods, meta);
 }

@@ -9,6 +9,7 @@
 
 #ifdef DDA_HAVE_RENDER
 
+#include <cmath>
 #include <cstring>
 
 #include "render.hpp"
@@ -83,7 +84,7 @@ render::Rgb read_rgb(const Options& o, const char* key) {
 
 #define DDA_FRAME_KEYS                                                                                               \
   "field", "width", "height", "colormap", "range", "view", "magnify", "edges", "edge_width", "contacts", "monitors", \
-      "velocity", "arrow_scale", "colorbar", "info", "title", "background", "supersample"
+      "velocity", "arrow_scale", "colorbar", "info", "title", "background", "supersample", "scale", "joints"
 
 render::FrameOptions read_frame_options(const Options& o) {
   render::FrameOptions f;
@@ -108,6 +109,8 @@ render::FrameOptions read_frame_options(const Options& o) {
   f.show_velocity = o.boolean("velocity", f.show_velocity);
   f.arrow_scale = o.non_negative("arrow_scale", f.arrow_scale);
   f.show_colorbar = o.boolean("colorbar", f.show_colorbar);
+  f.show_scale = o.boolean("scale", f.show_scale);
+  f.show_joint_state = o.boolean("joints", f.show_joint_state);
   f.show_info = o.boolean("info", f.show_info);
   f.title = o.string("title", f.title);
   if (o.has("background")) f.background = read_rgb(o, "background");
@@ -134,7 +137,9 @@ int m_frame(lua_State* L) {
 int m_frames(lua_State* L) {
   ScriptModel& m = check_model(L, 1, "m:frames");
   check_not_busy(m, "m:frames");
-  const Options o(L, 2, "m:frames", {"folder", "every", "every_time", "prefix", "digits", "on_error", DDA_FRAME_KEYS});
+  const Options o(L, 2, "m:frames",
+                  {"folder", "every", "every_time", "prefix", "digits", "on_error", "fixed", "steps", "times", "movie",
+                   "fps", DDA_FRAME_KEYS});
   render::SequenceOptions so;
   so.frame = read_frame_options(o);
   so.folder = in_out_dir(L, o.string("folder", "frames"));
@@ -143,6 +148,21 @@ int m_frames(lua_State* L) {
   if (so.every_steps < 0) fail("m:frames: option 'every' must be positive, got ", so.every_steps);
   so.every_time = o.non_negative("every_time", 0);
   so.digits = static_cast<int>(o.integer("digits", so.digits));
+  so.fixed = o.boolean("fixed", so.fixed);
+  if (o.has("steps")) {
+    const Vec2 w = o.point("steps");
+    if (w.x() != std::floor(w.x()) || w.y() != std::floor(w.y()) || w.x() < 0)
+      fail("m:frames: option 'steps' must be {first, last} whole step numbers >= 0 (last -1: no end)");
+    so.from_step = static_cast<long>(w.x());
+    so.to_step = static_cast<long>(w.y());
+  }
+  if (o.has("times")) {
+    const Vec2 w = o.point("times");
+    so.from_time = w.x();
+    so.to_time = w.y();
+  }
+  if (o.has("movie")) so.movie = in_out_dir(L, o.string("movie"));
+  so.fps = static_cast<int>(o.integer("fps", so.fps));
   const std::string on_error = o.string("on_error", "stop");
   if (on_error == "stop")
     so.on_error = render::OnError::Stop;
@@ -150,6 +170,7 @@ int m_frames(lua_State* L) {
     so.on_error = render::OnError::Continue;
   else
     fail("m:frames: option 'on_error' must be \"stop\" or \"continue\", got \"", on_error, "\"");
+  so.warn = [](const std::string& text) { warn(text); };
   RenderHook& hook = render_hook(m);
   auto seq = std::make_unique<render::FrameSequence>(std::move(so));
   for (int i = 0; i < m.monitor_count(); ++i) seq->snapshot().add_monitor(m.monitor(i).tracked, m.monitor(i).name);
@@ -181,6 +202,15 @@ int fr_capture(lua_State* L) {
 int fr_flush(lua_State* L) {
   self_frames(L, "frames:flush").flush();
   return 0;
+}
+// frames:finish() → the movie's path, or nil
+int fr_finish(lua_State* L) {
+  const auto movie = self_frames(L, "frames:finish").finish();
+  if (movie.empty())
+    lua_pushnil(L);
+  else
+    lua_pushstring(L, movie.c_str());
+  return 1;
 }
 int fr_path(lua_State* L) {
   render::FrameSequence& s = self_frames(L, "frames:path");
@@ -359,29 +389,41 @@ int mon_plot(lua_State* L) {
 }  // namespace
 
 void register_render(lua_State* L) {
-  static const luaL_Reg model_methods[] = {
-      {"frame", guarded<m_frame>}, {"frames", guarded<m_frames>}, {nullptr, nullptr}};
+  static const Method model_methods[] = {
+      {"frame", guarded<m_frame>,
+       "m:frame{file = \"frame.png\", field = ..., width, height, range = {min, max}, view = {x1, y1, x2, y2}, "
+       "magnify, contacts, joints, velocity, arrow_scale, scale, monitors, colorbar, info, title, ...} → path written"},
+      {"frames", guarded<m_frames>,
+       "m:frames{folder = \"frames\", every = N | every_time = dt, steps = {first, last}, times = {t0, t1}, movie = "
+       "\"film.mp4\", fps = 30, fixed = true, prefix, digits, on_error = \"stop\" | \"continue\", ...frame options} → "
+       "Frames: a numbered PNG sequence during the run; view, colour range and arrow scale fixed from the first frame "
+       "(fixed = false: each frame its own); a movie at the end when ffmpeg is on the PATH"},
+      {}};
   add_model_methods(L, model_methods);
-  static const luaL_Reg methods[] = {{"count", guarded<fr_count>},
-                                     {"capture", guarded<fr_capture>},
-                                     {"flush", guarded<fr_flush>},
-                                     {"path", guarded<fr_path>},
-                                     {"folder", guarded<fr_folder>},
-                                     {"active", guarded<fr_active>},
-                                     {nullptr, nullptr}};
+  static const Method methods[] = {
+      {"count", guarded<fr_count>, "frames:count() → frames captured so far"},
+      {"capture", guarded<fr_capture>, "frames:capture(): a frame now, due or not"},
+      {"flush", guarded<fr_flush>, "frames:flush(): waits for the queued frames; raises their errors"},
+      {"path", guarded<fr_path>, "frames:path([i]) → the file of frame i (from 0; default the last)"},
+      {"folder", guarded<fr_folder>, "frames:folder() → the folder of the sequence"},
+      {"active", guarded<fr_active>,
+       "frames:active() → false (and the error) once a failing sequence stopped under on_error = \"continue\""},
+      {"finish", guarded<fr_finish>,
+       "frames:finish() → movie path or nil: writes the queued frames and makes the movie now (otherwise done when the "
+       "model is closed or collected)"},
+      {}};
   static const luaL_Reg meta[] = {{"__tostring", fr_tostring}, {nullptr, nullptr}};
   define_type(L, kFramesType, methods, meta);
-  // monitor:plot
-  luaL_getmetatable(L, kMonitorType);
-  lua_getfield(L, -1, "__methods");
-  lua_pushcfunction(L, guarded<mon_plot>);
-  lua_setfield(L, -2, "plot");
-  lua_pop(L, 2);
+  static const Method monitor_methods[] = {
+      {"plot", guarded<mon_plot>, "monitor:plot{field = \"sxx\", file = \"sxx.png\", ...plot options} → path"}, {}};
+  add_methods(L, kMonitorType, monitor_methods);
 }
 
 void register_render_functions(lua_State* L) {
-  lua_pushcfunction(L, guarded<dda_plot>);
-  lua_setfield(L, -2, "plot");
+  static const Method functions[] = {
+      {"plot", guarded<dda_plot>, "dda.plot{file = \"plot.png\", series = {{...}, ...}, title, x_label, ...} → path"},
+      {}};
+  set_methods(L, functions);
 }
 
 void attach_session_frames(lua_State* L, int model_idx) {
@@ -394,8 +436,21 @@ void attach_session_frames(lua_State* L, int model_idx) {
   so.frame.field = render::parse_field(s.frames_field);
   so.frame.width = s.frames_width;
   so.frame.height = s.frames_height;
+  so.from_step = s.frames_from;
+  so.to_step = s.frames_to;
+  if (s.frames_range_set) so.frame.range = render::ValueRange{s.frames_range[0], s.frames_range[1]};
+  if (s.frames_view_set)
+    so.frame.view = render::Box{s.frames_view[0], s.frames_view[1], s.frames_view[2], s.frames_view[3]};
+  if (!s.frames_movie.empty()) {
+    const std::filesystem::path movie = s.frames_movie;
+    so.movie = movie.is_absolute() ? movie
+               : s.models_created <= 1
+                   ? s.out_dir / movie
+                   : s.out_dir / (movie.stem().string() + msg("_", s.models_created) + movie.extension().string());
+  }
   so.frame.validate();
   so.on_error = render::OnError::Continue;  // a command-line convenience never stops the run
+  so.warn = [](const std::string& text) { warn(text); };
   render_hook(*box->model).sequences.push_back(std::make_unique<render::FrameSequence>(std::move(so)));
 }
 

@@ -1,13 +1,23 @@
 #!/usr/bin/env bash
-# Setup: install the Debian 12 packages the engine needs (only those missing),
-# then configure and build into build/. Both README commands start with this.
-#   scripts/setup.sh            # install what is missing, build (Release)
+# Setup: install the Debian 12 packages the engine and its tests need (only
+# those missing), then configure and build into build/. Both README commands
+# start with this.
+#   scripts/setup.sh                  # install what is missing, build (Release)
+#   WITH_FFMPEG=1 scripts/setup.sh    # also ffmpeg: runs then make movies from their frames
 #   BUILD_DIR=b scripts/setup.sh
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
+# Build: compiler, CMake, the libraries linked (Eigen, oneTBB, Lua 5.4, OSMesa,
+# stb, zlib for the PNG encoder, readline for the console) and GoogleTest.
 packages=(g++ cmake make pkg-config libeigen3-dev libtbb-dev liblua5.4-dev
-          libosmesa6-dev libstb-dev libgtest-dev libreadline-dev)
+          libosmesa6-dev libstb-dev zlib1g-dev libgtest-dev libreadline-dev
+          # Run: the TrueType font frames and plots are labelled with (σ, τ);
+          # without it a bitmap font spells Greek letters with Latin ones.
+          fonts-dejavu-core
+          # Tests: VTK's own reader checks the ParaView (VTU/PVD) output.
+          python3-vtk9)
+if [ "${WITH_FFMPEG:-0}" = 1 ]; then packages+=(ffmpeg); fi
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

@@ -123,6 +123,7 @@ Plan make_plan(const Scene& scene, const FrameOptions& o) {
     panel_w = std::max({panel_w, text_width(p.info->label, p.text), text_width("[" + unit + "]", p.text)});
   }
   if (o.show_contacts) panel_w = std::max(panel_w, th + m / 2 + text_width("sliding", p.text));
+  if (o.show_joint_state) panel_w = std::max(panel_w, th + m / 2 + text_width("failed joint", p.text));
   if (panel_w > 0) panel_w += m;
 
   L.model = {m, top, o.width - 2 * m - panel_w, o.height - top - m};
@@ -131,9 +132,10 @@ Plan make_plan(const Scene& scene, const FrameOptions& o) {
   p.panel = {L.model.right() + m, top, panel_w - m, L.model.h};
 
   int ramp_bottom = p.panel.bottom();
-  if (o.show_contacts) {
+  const int legend_rows = (o.show_contacts ? 3 : 0) + (o.show_joint_state ? 2 : 0);
+  if (legend_rows > 0) {
     const int row = th + 2;
-    p.legend = {p.panel.x, p.panel.bottom() - 3 * row, p.panel.w, 3 * row};
+    p.legend = {p.panel.x, p.panel.bottom() - legend_rows * row, p.panel.w, legend_rows * row};
     ramp_bottom = p.legend.y - m;
   }
   if (bar) {
@@ -143,10 +145,28 @@ Plan make_plan(const Scene& scene, const FrameOptions& o) {
   }
 
   L.view = square_pixels(o.view ? *o.view : fit_view(scene, o.magnify), L.model);
+  if (o.show_velocity) L.arrow_scale = o.arrow_scale > 0 ? o.arrow_scale : auto_arrow_scale(scene, L.view);
   return p;
 }
 
 }  // namespace
+
+bool field_is_zero(const Scene& scene, Field field) {
+  for (std::size_t b = 0; b < scene.block_count(); ++b) {
+    const double v = field_value(scene, b, field);
+    if (std::isfinite(v) && v != 0) return false;
+  }
+  return true;
+}
+
+Box frame_view(const Scene& scene, double magnify) { return fit_view(scene, magnify); }
+
+double auto_arrow_scale(const Scene& scene, const Box& view) {
+  double vmax = 0;
+  for (const Vec2& v : scene.velocity)
+    if (v.allFinite()) vmax = std::max(vmax, v.norm());
+  return vmax > 0 ? 0.06 * std::min(view.width(), view.height()) / vmax : 0;
+}
 
 ValueRange frame_range(const Scene& scene, Field field) {
   std::vector<double> values(scene.block_count());
@@ -179,7 +199,7 @@ struct Renderer::Impl {
   std::vector<std::uint8_t> rgba;
   int bw = 0, bh = 0;
   // Scratch reused from frame to frame.
-  std::vector<float> tri_xy, line_xy, point_xy, arrow_xy;
+  std::vector<float> tri_xy, line_xy, point_xy, arrow_xy, failed_xy;
   std::vector<std::uint8_t> tri_rgb, point_rgb;
   std::vector<Vec2> poly;
   std::vector<std::array<int, 3>> tris;
@@ -258,13 +278,16 @@ void Renderer::Impl::draw_gl(const Scene& scene, const FrameOptions& o, const Pl
       const Rgb col = kContactColor[static_cast<int>(c.state)];
       point_rgb.insert(point_rgb.end(), {col.r, col.g, col.b});
     }
+  failed_xy.clear();
+  if (o.show_joint_state)
+    for (const ContactMark& c : scene.contacts) {
+      if (c.intact || c.eblock < 0) continue;
+      const int v0 = scene.offsets[c.eblock], nv = scene.offsets[c.eblock + 1] - v0;
+      push(failed_xy, scene.drawn_vertex(c.eblock, v0 + c.edge, magnify));
+      push(failed_xy, scene.drawn_vertex(c.eblock, v0 + (c.edge + 1) % nv, magnify));
+    }
   if (o.show_velocity && n > 0) {
-    double vmax = 0;
-    for (const Vec2& v : scene.velocity)
-      if (v.allFinite()) vmax = std::max(vmax, v.norm());
-    const double scale = o.arrow_scale > 0 ? o.arrow_scale
-                         : vmax > 0        ? 0.06 * std::min(L.view.width(), L.view.height()) / vmax
-                                           : 0;
+    const double scale = L.arrow_scale;
     const double px = L.view.width() / L.model.w;  // metres per pixel
     for (std::size_t b = 0; b < n && scale > 0; ++b) {
       const Vec2 v = scene.velocity[b];
@@ -315,6 +338,12 @@ void Renderer::Impl::draw_gl(const Scene& scene, const FrameOptions& o, const Pl
     glColor3ub(o.edge_color.r, o.edge_color.g, o.edge_color.b);
     glVertexPointer(2, GL_FLOAT, 0, line_xy.data());
     glDrawArrays(GL_LINES, 0, static_cast<GLsizei>(line_xy.size() / 2));
+  }
+  if (!failed_xy.empty()) {
+    glLineWidth(static_cast<float>(std::min(16.0, 2 * o.edge_width) * k));
+    glColor3ub(o.failed_joint_color.r, o.failed_joint_color.g, o.failed_joint_color.b);
+    glVertexPointer(2, GL_FLOAT, 0, failed_xy.data());
+    glDrawArrays(GL_LINES, 0, static_cast<GLsizei>(failed_xy.size() / 2));
   }
   if (!arrow_xy.empty()) {
     glLineWidth(static_cast<float>(k));  // whole pixels: llvmpipe's fast line path
@@ -408,13 +437,65 @@ Image Renderer::Impl::read_back(const FrameOptions& o) const {
 
 namespace {
 
+// The largest 1, 2 or 5 × 10^k not above v (v > 0).
+double nice_below(double v) {
+  const double p = std::pow(10.0, std::floor(std::log10(v)));
+  for (double f : {5.0, 2.0, 1.0})
+    if (f * p <= v * (1 + 1e-9)) return f * p;
+  return p;
+}
+
+// Text with a white halo, legible over any colour.
+void halo_text(Image& img, int x, int y, const std::string& text, const TextStyle& ts) {
+  TextStyle white = ts;
+  white.color = {255, 255, 255};
+  for (int dy = -1; dy <= 1; ++dy)
+    for (int dx = -1; dx <= 1; ++dx)
+      if (dx || dy) draw_text(img, x + dx, y + dy, text, white);
+  draw_text(img, x, y, text, ts);
+}
+
+// Bottom left of the model view: a scale bar of a round length near a fifth
+// of the view's width and, with velocity arrows, a reference arrow of a round
+// speed, both in the frame's own scale (so they stay put in a sequence with
+// a fixed view and arrow scale).
+void draw_scale(Image& img, const FrameOptions& o, const Plan& p) {
+  const FrameLayout& L = p.layout;
+  const int m = p.margin;
+  const double px_per_m = L.model.w / L.view.width();
+  const double length = nice_below(0.2 * L.view.width());
+  const int bar = static_cast<int>(std::lround(length * px_per_m));
+  const int x0 = L.model.x + m, y0 = L.model.bottom() - m - 4;
+  const TextStyle ts{p.text * 0.85f, kTextColor, Align::Start, Align::End};
+  if (bar >= 4) {
+    const Rgb black{0, 0, 0}, white{255, 255, 255};
+    img.fill_rect({x0 - 1, y0 - 1, bar + 2, 5}, white);
+    img.fill_rect({x0, y0, bar, 3}, black);
+    img.fill_rect({x0 - 1, y0 - 6, 3, 9}, black);
+    img.fill_rect({x0 + bar - 2, y0 - 6, 3, 9}, black);
+    halo_text(img, x0, y0 - 8, format_number(length, 3) + " m", ts);
+  }
+  if (o.show_velocity && L.arrow_scale > 0) {
+    // The round speed whose arrow is at most 8 % of the view's width.
+    const double speed = nice_below(0.08 * L.view.width() / L.arrow_scale);
+    const double len = speed * L.arrow_scale * px_per_m;
+    const double ax = x0 + std::max(bar, 0) + 3.0 * m, ay = y0 + 1.5;
+    const double head = std::min(0.3 * len, 10.0);
+    stroke_line(img, {ax, ay}, {ax + len, ay}, 1.5, {0, 0, 0}, L.model);
+    stroke_line(img, {ax + len, ay}, {ax + len - head, ay - 0.45 * head}, 1.5, {0, 0, 0}, L.model);
+    stroke_line(img, {ax + len, ay}, {ax + len - head, ay + 0.45 * head}, 1.5, {0, 0, 0}, L.model);
+    halo_text(img, static_cast<int>(ax), y0 - 8, format_number(speed, 3) + " m/s", ts);
+  }
+}
+
 void draw_overlay(Image& img, const Scene& scene, const FrameOptions& o, const Plan& p) {
   const FrameLayout& L = p.layout;
   const int th = text_height(p.text), m = p.margin;
   TextStyle ts{p.text, kTextColor};
 
   if (o.show_info) {
-    const std::string left = !o.title.empty() ? o.title : p.has_field ? p.info->description : "blocks";
+    std::string left = !o.title.empty() ? o.title : p.has_field ? p.info->description : "blocks";
+    if (o.magnify != 1) left += "    deformation ×" + format_number(o.magnify, 4);
     draw_text(img, m, m, left, ts);
     const std::string right = "t = " + format_number(scene.time, 6) + " s    step " + std::to_string(scene.step);
     draw_text(img, o.width - m, m, right, {p.text, kTextColor, Align::End});
@@ -440,16 +521,27 @@ void draw_overlay(Image& img, const Scene& scene, const FrameOptions& o, const P
     }
   }
 
-  if (o.show_contacts && !p.legend.empty()) {
+  if (!p.legend.empty()) {
     const int row = th + 2, sq = std::max(4, th / 2);
-    for (int i = 0; i < 3; ++i) {
-      const int y = p.legend.y + i * row;
-      const PixelRect box{p.legend.x, y + (th - sq) / 2, sq, sq};
-      img.fill_rect({box.x - 1, box.y - 1, box.w + 2, box.h + 2}, {60, 60, 60});
-      img.fill_rect(box, kContactColor[i]);
-      draw_text(img, p.legend.x + sq + m / 2, y, kContactName[i], ts);
+    int y = p.legend.y;
+    if (o.show_contacts)
+      for (int i = 0; i < 3; ++i, y += row) {
+        const PixelRect box{p.legend.x, y + (th - sq) / 2, sq, sq};
+        img.fill_rect({box.x - 1, box.y - 1, box.w + 2, box.h + 2}, {60, 60, 60});
+        img.fill_rect(box, kContactColor[i]);
+        draw_text(img, p.legend.x + sq + m / 2, y, kContactName[i], ts);
+      }
+    if (o.show_joint_state) {
+      const Rgb colors[2] = {o.edge_color, o.failed_joint_color};
+      const char* names[2] = {"intact joint", "failed joint"};
+      for (int i = 0; i < 2; ++i, y += row) {
+        img.fill_rect({p.legend.x, y + th / 2 - 1, sq, i == 0 ? 1 : 3}, colors[i]);
+        draw_text(img, p.legend.x + sq + m / 2, y, names[i], ts);
+      }
     }
   }
+
+  if (o.show_scale) draw_scale(img, o, p);
 
   if (o.show_monitors) {
     const double rad = std::max(3.0, p.text * 0.3);

@@ -48,11 +48,17 @@ struct FrameOptions {
   bool show_contacts = false;  // contact vertices: open white, sliding magenta, locked black
   double contact_size = 4;     // marker size (pixels)
   bool show_monitors = true;   // monitor points with their names
-  bool show_velocity = false;  // velocity arrows at block centroids
+  bool show_velocity = false;  // velocity arrows at block centroids, with a reference arrow
   double arrow_scale = 0;      // arrow length (m) per (m/s); 0 → longest arrow = 6 % of the view
-  bool show_colorbar = true;   // colour bar with ticks, field name and unit
-  bool show_info = true;       // top line: title or field, simulated time, step
-  std::string title;           // replaces the field description on the top line
+  bool show_scale = true;      // a scale bar (and the magnification when magnify ≠ 1)
+  // Joints whose contacts have failed (lost cohesion and tensile strength,
+  // or contacts made later, which never had any) drawn in red over the edges;
+  // intact ones stay as the edges are drawn.
+  bool show_joint_state = false;
+  Rgb failed_joint_color{215, 25, 28};
+  bool show_colorbar = true;  // colour bar with ticks, field name and unit
+  bool show_info = true;      // top line: title or field, simulated time, step
+  std::string title;          // replaces the field description on the top line
   Rgb background{255, 255, 255};
   int supersample = 1;  // 1..4: draw at k× size and average k×k pixels (smoother edges)
 
@@ -69,6 +75,7 @@ struct FrameLayout {
   Box view;            // world window mapped onto `model` (after square-pixel widening)
   ValueRange range;    // colour range actually used (SI)
   ColorMap colormap = ColorMap::Viridis;
+  double arrow_scale = 0;  // velocity arrows: m of arrow per m/s (0: none drawn)
 
   // World point → continuous pixel coordinates (x right, y down; pixel (i, j)
   // spans [i, i+1) × [j, j+1)).
@@ -111,6 +118,16 @@ class Renderer {
 // not set: ±max|value| for signed fields, [0, max] for magnitudes (SI units;
 // ±1 or [0, 1] display unit when every value is zero).
 ValueRange frame_range(const Scene& scene, Field field);
+// Whether every block's value of the field is zero (or not finite): a frame
+// with nothing to fix a colour range from.
+bool field_is_zero(const Scene& scene, Field field);
+// The world window a frame takes from its scene when FrameOptions::view is
+// not set: the model's bounds as drawn (magnified) plus a 4 % margin.
+Box frame_view(const Scene& scene, double magnify);
+// The arrow scale (m per m/s) a frame takes when FrameOptions::arrow_scale is
+// 0: the fastest block's arrow 6 % of the smaller side of `view`; 0 when
+// nothing moves.
+double auto_arrow_scale(const Scene& scene, const Box& view);
 
 // Test hook: while set, creating an OpenGL context fails as if OSMesa were
 // missing (so are contexts when the environment variable

@@ -1,15 +1,22 @@
 #include "output/frame_sequence.hpp"
 
+#include <fcntl.h>
+#include <spawn.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
 #include <algorithm>
 #include <cerrno>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <system_error>
+#include <vector>
 
 #include "core/error.hpp"
+
+extern char** environ;
 
 namespace dda::render {
 namespace {
@@ -20,6 +27,13 @@ SequenceOptions validated(SequenceOptions o) {
     throw Error(msg("frame sequence: every_time = ", o.every_time, " s must be >= 0"));
   if (o.every_steps > 0 && o.every_time > 0) throw Error("frame sequence: give every_steps or every_time, not both");
   if (o.digits < 1 || o.digits > 9) throw Error(msg("frame sequence: digits = ", o.digits, " must be 1 .. 9"));
+  if (o.from_step < 0) throw Error(msg("frame sequence: the first step ", o.from_step, " must be >= 0"));
+  if (o.to_step >= 0 && o.to_step < o.from_step)
+    throw Error(msg("frame sequence: the last step ", o.to_step, " comes before the first ", o.from_step));
+  if (!std::isfinite(o.from_time) || !std::isfinite(o.to_time) || o.from_time < 0 ||
+      (o.to_time >= 0 && o.to_time < o.from_time))
+    throw Error(msg("frame sequence: the time window [", o.from_time, ", ", o.to_time, "] s is not a window"));
+  if (o.fps < 1 || o.fps > 240) throw Error(msg("frame sequence: fps = ", o.fps, " must be 1 .. 240"));
   if (o.queue_capacity < 1) throw Error("frame sequence: the queue capacity must be at least 1");
   if (o.prefix.find('/') != std::string::npos)
     throw Error(
@@ -43,7 +57,13 @@ SequenceOptions validated(SequenceOptions o) {
 FrameSequence::FrameSequence(SequenceOptions options)
     : options_(validated(std::move(options))), writer_(options_.queue_capacity) {}
 
-FrameSequence::~FrameSequence() = default;
+FrameSequence::~FrameSequence() {
+  try {
+    finish();
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "warning: frame sequence in '%s': %s\n", options_.folder.c_str(), e.what());
+  }
+}
 
 std::filesystem::path FrameSequence::frame_path(int index) const {
   char num[32];
@@ -53,8 +73,13 @@ std::filesystem::path FrameSequence::frame_path(int index) const {
 
 bool FrameSequence::due(long step, double time) const {
   if (!active_ || step == last_step_) return false;
-  if (options_.every_steps > 0)
-    return last_step_ < 0 || step >= (last_step_ / options_.every_steps + 1) * options_.every_steps;
+  const SequenceOptions& o = options_;
+  if (step < o.from_step || (o.to_step >= 0 && step > o.to_step)) return false;
+  const double slack = 1e-9 * std::max({o.every_time, o.from_time, o.to_time, 0.0});
+  if (time < o.from_time - slack || (o.to_time >= 0 && time > o.to_time + slack)) return false;
+  if (o.every_steps > 0)
+    return last_step_ < o.from_step ||
+           step >= o.from_step + ((last_step_ - o.from_step) / o.every_steps + 1) * o.every_steps;
   if (options_.every_time > 0) return time >= next_time_ - 1e-9 * options_.every_time;
   return true;
 }
@@ -83,27 +108,154 @@ void FrameSequence::capture(Scene scene) {
   const long step = scene.step;
   const double time = scene.time;
   FrameOptions frame = options_.frame;
+  bool wait = false;  // for the fixed colour range or arrow scale
   if (options_.grow_range && !frame.range && frame.field != Field::None) {
     const ValueRange r = frame_range(scene, frame.field);
     grown_ = grown_ ? ValueRange{std::min(grown_->min, r.min), std::max(grown_->max, r.max)} : r;
     frame.range = grown_;
   }
-  try {
-    writer_.write_frame(std::move(scene), std::move(frame), frame_path(next_index_));
-  } catch (const Error& e) {
-    handle(e);
+  if (options_.fixed) {
+    if (!frame.view) {
+      if (!fixed_view_) fixed_view_ = frame_view(scene, frame.magnify);
+      frame.view = fixed_view_;
+    }
+    if (!frame.range && frame.field != Field::None) {
+      if (!fixed_range_ && !field_is_zero(scene, frame.field)) fixed_range_ = frame_range(scene, frame.field);
+      frame.range = fixed_range_;
+      wait = !fixed_range_;
+    }
+    if (frame.show_velocity && frame.arrow_scale == 0) {
+      if (fixed_arrows_ == 0) fixed_arrows_ = auto_arrow_scale(scene, *frame.view);
+      frame.arrow_scale = fixed_arrows_;
+      wait = wait || fixed_arrows_ == 0;
+    }
+  }
+  const int index = next_index_++;
+  mark_taken(step, time);
+  if (wait && pending_.size() < 64) {
+    pending_.push_back({std::move(scene), std::move(frame), index});
     return;
   }
-  ++next_index_;
-  mark_taken(step, time);
+  release_pending();
+  submit(std::move(scene), std::move(frame), index);
+}
+
+void FrameSequence::submit(Scene scene, FrameOptions frame, int index) {
+  if (!active_) return;
+  try {
+    writer_.write_frame(std::move(scene), std::move(frame), frame_path(index));
+  } catch (const Error& e) {
+    handle(e);
+  }
+}
+
+// Frames that waited: with the range and arrow scale now fixed (or, at the
+// end of a sequence that never got them, with their own).
+void FrameSequence::release_pending() {
+  std::vector<Pending> pending;
+  pending.swap(pending_);
+  for (Pending& p : pending) {
+    if (!p.frame.range && !options_.frame.range) p.frame.range = fixed_range_;
+    if (p.frame.show_velocity && p.frame.arrow_scale == 0) p.frame.arrow_scale = fixed_arrows_;
+    submit(std::move(p.scene), std::move(p.frame), p.index);
+  }
 }
 
 void FrameSequence::flush() {
+  release_pending();
   try {
     writer_.flush();
   } catch (const Error& e) {
     if (active_ || options_.on_error == OnError::Stop) handle(e);
   }
+}
+
+std::filesystem::path FrameSequence::finish() {
+  if (finished_) return {};
+  finished_ = true;
+  flush();
+  return make_movie();
+}
+
+namespace {
+
+// The program's path on $PATH, or empty.
+std::string on_path(const char* program) {
+  const char* path = std::getenv("PATH");
+  std::string dirs = path ? path : "";
+  std::size_t start = 0;
+  while (start <= dirs.size()) {
+    std::size_t end = dirs.find(':', start);
+    if (end == std::string::npos) end = dirs.size();
+    const std::string dir = end > start ? dirs.substr(start, end - start) : ".";
+    const std::string candidate = dir + "/" + program;
+    if (::access(candidate.c_str(), X_OK) == 0) return candidate;
+    start = end + 1;
+  }
+  return {};
+}
+
+}  // namespace
+
+std::filesystem::path FrameSequence::make_movie() {
+  const SequenceOptions& o = options_;
+  if (o.movie.empty() || next_index_ == 0) return {};
+  const std::string ffmpeg = on_path("ffmpeg");
+  if (ffmpeg.empty()) {
+    o.warn(msg("ffmpeg is not on the PATH: no movie '", o.movie.string(), "'; the frames are in '", o.folder.string(),
+               "' (WITH_FFMPEG=1 scripts/setup.sh installs ffmpeg)"));
+    return {};
+  }
+  std::error_code ec;
+  if (o.movie.has_parent_path()) std::filesystem::create_directories(o.movie.parent_path(), ec);
+  // Into a side file first: a failed encode never leaves half a movie.
+  const std::filesystem::path part = o.movie.parent_path() / (".part-" + o.movie.filename().string());
+  const std::filesystem::path log = o.movie.string() + ".log";
+  char pattern[64];
+  std::snprintf(pattern, sizeof pattern, "_%%0%dd.png", o.digits);
+  const std::string ext = o.movie.extension().string();
+  std::vector<std::string> args = {ffmpeg,
+                                   "-y",
+                                   "-nostdin",
+                                   "-loglevel",
+                                   "error",
+                                   "-framerate",
+                                   std::to_string(o.fps),
+                                   "-start_number",
+                                   "0",
+                                   "-i",
+                                   (o.folder / (o.prefix + pattern)).string()};
+  if (ext == ".mp4" || ext == ".mkv" || ext == ".mov" || ext == ".m4v")
+    args.insert(args.end(), {"-vf", "pad=ceil(iw/2)*2:ceil(ih/2)*2", "-c:v", "libx264", "-pix_fmt", "yuv420p"});
+  args.push_back(part.string());
+  std::vector<char*> argv;
+  for (std::string& a : args) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  posix_spawn_file_actions_t fa;
+  posix_spawn_file_actions_init(&fa);
+  posix_spawn_file_actions_addopen(&fa, 0, "/dev/null", O_RDONLY, 0);
+  posix_spawn_file_actions_addopen(&fa, 1, log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  posix_spawn_file_actions_adddup2(&fa, 1, 2);
+  pid_t pid = -1;
+  const int rc = posix_spawn(&pid, ffmpeg.c_str(), &fa, nullptr, argv.data(), environ);
+  posix_spawn_file_actions_destroy(&fa);
+  int status = 0;
+  if (rc == 0) {
+    while (waitpid(pid, &status, 0) < 0 && errno == EINTR) {}
+  }
+  if (rc != 0 || !WIFEXITED(status) || WEXITSTATUS(status) != 0) {
+    std::filesystem::remove(part, ec);
+    o.warn(msg("ffmpeg could not make the movie '", o.movie.string(), "' (", rc ? std::strerror(rc) : "it failed",
+               "; see '", log.string(), "'); the frames are in '", o.folder.string(), "'"));
+    return {};
+  }
+  std::filesystem::rename(part, o.movie, ec);
+  if (ec) {
+    o.warn(msg("cannot write the movie '", o.movie.string(), "': ", ec.message()));
+    return {};
+  }
+  std::filesystem::remove(log, ec);
+  return o.movie;
 }
 
 }  // namespace dda::render

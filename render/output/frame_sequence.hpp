@@ -26,6 +26,7 @@
 #include <functional>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "core/error.hpp"
 #include "frame/renderer.hpp"
@@ -46,10 +47,29 @@ struct SequenceOptions {
   double every_time = 0;  // a frame each time simulated time passes a multiple of every_time (s)
                           // (neither set → a frame at every call; both set → dda::Error)
   FrameOptions frame;     // what each frame shows
-  // Without frame.range: when set, the colour range only ever widens over the
-  // sequence (the union of every frame's own range so far), so a colour keeps
-  // its meaning from frame to frame in a video. Otherwise each frame has its own.
+  // Animation-safe by default: what frame.view, frame.range and
+  // frame.arrow_scale leave open is fixed for the whole sequence, so a block
+  // that falls is seen to fall and a colour keeps its meaning:
+  //  - the view from the first frame (the model's bounds then, plus a margin);
+  //  - the colour range from the first frame whose field is not zero
+  //    everywhere (earlier frames wait for it: an all-zero frame has nothing
+  //    to take a range from), ±max|value| or [0, max] as for one frame;
+  //  - the arrow scale likewise, from the first frame in which a block moves.
+  // Off (fixed = false): each frame fits its own view, range and arrows.
+  bool fixed = true;
+  // Instead of a range fixed from one frame: the range only ever widens over
+  // the sequence (the union of every frame's own range so far).
   bool grow_range = false;
+  // The window frames are taken in: steps [from_step, to_step] (to_step < 0:
+  // no end) and times [from_time, to_time] (s; to_time < 0: no end). With
+  // every_steps, frames fall at from_step, from_step + every_steps, ...
+  long from_step = 0, to_step = -1;
+  double from_time = 0, to_time = -1;
+  // A movie made from the frames when the sequence ends (ffmpeg -framerate
+  // fps, H.264, yuv420p), when ffmpeg is on the PATH; else a warning says
+  // so and the frames stay. Empty: none.
+  std::filesystem::path movie;
+  int fps = 30;
   int digits = 5;                  // zero-padded width of the index
   std::size_t queue_capacity = 4;  // frames waiting for the worker before the caller waits
   OnError on_error = OnError::Stop;
@@ -77,7 +97,14 @@ class FrameSequence {
   void capture(Scene scene);
 
   // Waits for every queued frame to be written; reports errors per on_error.
+  // Frames still waiting for a colour range are drawn with the range of
+  // their own (all-zero) field.
   void flush();
+
+  // flush(), then the movie (once; later calls do nothing). Returns the movie
+  // path, or empty when none was made (no movie asked, no frames, no ffmpeg:
+  // a warning says which).
+  std::filesystem::path finish();
 
   bool active() const { return active_; }  // false after an error under OnError::Continue
   const std::string& last_error() const { return last_error_; }
@@ -91,12 +118,25 @@ class FrameSequence {
  private:
   void handle(const Error& e);  // per on_error
   void mark_taken(long step, double time);
+  void submit(Scene scene, FrameOptions frame, int index);
+  void release_pending();
+  std::filesystem::path make_movie();
 
   SequenceOptions options_;
   WorldSnapshot snapshot_;
   FrameWriter writer_;
   int next_index_ = 0;
   std::optional<ValueRange> grown_;
+  std::optional<Box> fixed_view_;
+  std::optional<ValueRange> fixed_range_;
+  double fixed_arrows_ = 0;
+  struct Pending {
+    Scene scene;
+    FrameOptions frame;
+    int index;
+  };
+  std::vector<Pending> pending_;  // frames waiting for the fixed range or arrow scale
+  bool finished_ = false;
   long last_step_ = -1;
   double next_time_ = 0;
   bool active_ = true;

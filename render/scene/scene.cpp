@@ -70,6 +70,9 @@ void Scene::validate() const {
     if (c.block < 0 || static_cast<std::size_t>(c.block) >= n || c.vertex < 0 ||
         c.vertex >= offsets[c.block + 1] - offsets[c.block])
       throw Error(msg("scene: contact at block ", c.block, " vertex ", c.vertex, " does not exist"));
+    else if (c.eblock >= 0 && (static_cast<std::size_t>(c.eblock) >= n || c.edge < 0 ||
+                               c.edge >= offsets[c.eblock + 1] - offsets[c.eblock]))
+      throw Error(msg("scene: contact on block ", c.eblock, " edge ", c.edge, " does not exist"));
 }
 
 Box Scene::bounds(double magnify) const {

@@ -25,6 +25,12 @@ struct ContactMark {
   BlockId block = -1;  // the contact's vertex is vertex `vertex` of block `block`
   std::int32_t vertex = -1;
   ContactState state = ContactState::Open;
+  // The edge it touches (edge `edge` of block `eblock`; -1: not known) and
+  // whether the joint there is intact (keeps its cohesion and tensile
+  // strength) or has failed (or was never a joint: a contact made later).
+  BlockId eblock = -1;
+  std::int32_t edge = -1;
+  bool intact = true;
 };
 
 struct MonitorMark {

@@ -67,7 +67,8 @@ Scene snapshot(const World& world, bool with_contacts) {
   }
   if (with_contacts) {
     s.contacts.reserve(world.contacts().size());
-    for (const Contact& c : world.contacts()) s.contacts.push_back({c.vblock, c.vertex, c.state});
+    for (const Contact& c : world.contacts())
+      s.contacts.push_back({c.vblock, c.vertex, c.state, c.eblock, c.edge, c.intact});
   }
   s.time = world.time();
   s.step = world.step_count();

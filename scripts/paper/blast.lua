@@ -56,6 +56,8 @@
 --          blast_<tag>_frames/    sigma_yy frames every `frames` s (when > 0)
 --          blast_runs.csv         one row per run appended: tag, blocks, steps,
 --                                 wall time, PPVs at MP1/MP2/MP3, step cuts
+--          result.csv             without figure=: ppv_mp1/2/3, t_peak_mp1, blocks,
+--                                 steps, step_cuts, wall_s (a row of a dda sweep table)
 --          with figure=...: fig<id>_*.png comparison plots.
 
 local dda = require "dda"
@@ -256,6 +258,9 @@ end
 
 if figure == "" then
   local r = run_case(cfg_with())
+  -- one case: its numbers for a dda sweep table (and <out>/result.csv)
+  dda.result{ ppv_mp1 = r.MP1, ppv_mp2 = r.MP2, ppv_mp3 = r.MP3, t_peak_mp1 = r.t_peak_MP1, blocks = r.blocks,
+              steps = r.steps, step_cuts = r.cuts, wall_s = r.wall }
   if P.expect_ppv > 0 then
     local diff = r.MP1 / P.expect_ppv - 1
     print(string.format("  PPV at MP1 %.4f m/s against %.4f m/s: %+.1f %% (allowed %.0f %%)", r.MP1, P.expect_ppv,

@@ -21,18 +21,21 @@
 --            build/dda run scripts/paper/blast.lua --set figure=14a --out out/blast-h2/fig14a
 --            build/dda run scripts/paper/blast.lua --set figure=14b --out out/blast-h2/fig14b
 --            build/dda run scripts/paper/blast.lua --set figure=15  --out out/blast-h2/fig15
---          dirs: relative to the working directory (--set dir= is the old
---          one-folder form; it writes no docs unless --set docs= is given). Joint spacing of a folder: --set spacings, else the
---          -h<N> ending of its name, else the run tags in it (no _h suffix = the
---          paper's 2 m). docs and notes: relative to the repository root (two
---          folders above this script) or absolute; docs=none writes no report.
+--          dirs: relative to the working directory. Joint spacing of a folder:
+--          --set spacings, else the -h<N> ending of its name, else the run tags in
+--          it (no _h suffix = the paper's 2 m). docs and notes: relative to the
+--          repository root (two folders above this script) or absolute.
 -- Writes:  <out>/blast_summary.csv  figure,quantity,paper,ours,unit,difference_percent,run_wall_s
 --          <out>/blast_h<N>_fig*.png  the figures redrawn from the CSV files
---          <docs>/validation.md   the block between the "section 4" marker lines
---                                 (replaced; appended at the end when absent)
---          <docs>/validation.csv  rows of figures fig14* ... fig18 replaced, the
---                                 others kept (figure,quantity,paper,ours,unit)
+--          <out>/validation_section4.md  the report's Section 4 block
+--          and only with --set write_docs=true (docs/ is the committed report):
+--          <docs>/validation.md   in the block between the "section 4" marker lines,
+--                                 the sub-block of each joint spacing given here
+--                                 replaced; the other spacings' sub-blocks kept
+--          <docs>/validation.csv  rows merged by (figure, quantity): the rows of
+--                                 the spacings given replaced, every other row kept
 --          <docs>/figures/blast_h<N>_*.png  (copies of the redrawn figures)
+--          So a summary of the 2 m runs alone leaves the 1 m and 0.5 m rows as they were.
 
 local dda = require "dda"
 
@@ -40,17 +43,17 @@ local here = debug.getinfo(1, "S").source:gsub("^@", ""):match("^(.*)/[^/]*$") o
 local root = here .. "/../.."
 local function from_root(p) return p:sub(1, 1) == "/" and p or root .. "/" .. p end
 
+local docs_output = require "docs_output"
+
 local dirs_param = tostring(dda.param("dirs", ""))
--- the old one-folder form (--set dir=) only tabulates: it leaves the docs alone unless told
-local docs_default = dirs_param ~= "" and "docs" or "none"
-if dirs_param == "" then dirs_param = tostring(dda.param("dir", "out/blast")) end
+if dirs_param == "" then dirs_param = tostring(dda.param("dir", "out/blast")) end   -- the old one-folder form
 local labels_param = tostring(dda.param("labels", ""))
 local spacings_param = tostring(dda.param("spacings", ""))
-local docs_param = tostring(dda.param("docs", docs_default))
-local docs = docs_param ~= "none" and from_root(docs_param) or nil
+local write_docs = dda.param("write_docs", false)
+local docs_param = tostring(dda.param("docs", "docs"))
+local docs = write_docs and from_root(docs_param) or nil
 local notes_param = tostring(dda.param("notes", ""))
-local notes_path = notes_param ~= "" and from_root(notes_param) or
-                   (docs and docs .. "/validation_section4_notes.md")
+local notes_path = notes_param ~= "" and from_root(notes_param) or from_root(docs_param) .. "/validation_section4_notes.md"
 
 local BEGIN = "<!-- section 4: begin (written by scripts/paper/blast_summary.lua) -->"
 local END = "<!-- section 4: end -->"
@@ -389,16 +392,20 @@ end
 
 local out_csv = dda.output("blast_summary.csv")
 local outdir = out_csv:match("^(.*)/[^/]*$") or "."
-local summary = assert(io.open(out_csv, "w"))
-summary:write("figure,quantity,paper,ours,unit,difference_percent,run_wall_s\n")
+local summary_lines = { "figure,quantity,paper,ours,unit,difference_percent,run_wall_s" }
 
+-- The Section 4 block: a header, one sub-block per joint spacing (each opened
+-- by a "<!-- set hN -->" line), the notes. `w` writes into the current part.
 local md, csv_rows = {}, {}
-local function w(s) md[#md + 1] = s end
+local set_blocks, notes_md = {}, {}
+local current = md
+local function w(s) current[#current + 1] = s end
 
 local cmd = "build/dda run scripts/paper/blast_summary.lua --set dirs=" .. dirs_param
 if labels_param ~= "" then cmd = cmd .. string.format(' --set labels="%s"', labels_param) end
 if spacings_param ~= "" then cmd = cmd .. " --set spacings=" .. spacings_param end
-if docs_param ~= docs_default then cmd = cmd .. " --set docs=" .. docs_param end
+if write_docs then cmd = cmd .. " --set write_docs=true" end
+if docs_param ~= "docs" then cmd = cmd .. " --set docs=" .. docs_param end
 if notes_param ~= "" then cmd = cmd .. " --set notes=" .. notes_param end
 cmd = cmd .. " --out " .. outdir
 
@@ -426,15 +433,11 @@ w("**Definitions.** PPV = max |vy| over the run (Figs. 14a-b: 12 ms runs). Refle
   "with Q = 606 kg. A run missing from its folder's `blast_runs.csv` (not run, or still running) is marked " ..
   "*not run*.")
 w("")
-w("**Reproduce** (each `figure=` command runs its models one after the other; run times below):")
+w("**Reproduce**: each joint spacing's runs are listed in its part below (each `figure=` command runs its " ..
+  "models one after the other); this table then comes from (`--set write_docs=true` writes it here, replacing " ..
+  "only the parts of the spacings given):")
 w("")
 w("```")
-for _, S in ipairs(sets) do
-  for _, sub in ipairs(SUBS) do
-    w(string.format("build/dda run scripts/paper/blast.lua --set figure=%s%s --out %s/%s", sub:gsub("^fig", ""),
-                    S.spacing ~= 2 and string.format(" --set spacing=%g", S.spacing) or "", S.dir, sub))
-  end
-end
 w(cmd)
 w("```")
 w("")
@@ -447,7 +450,17 @@ local expected = {
 local figure_files = {}
 for _, S in ipairs(sets) do
   local rows, targets = measure(S)
+  current = {}
+  set_blocks[#set_blocks + 1] = { id = S.id, lines = current }
+  w("<!-- set " .. S.id .. " -->")
   w(string.format("### %s — `%s`", S.label, S.dir))
+  w("")
+  w("```")
+  for _, sub in ipairs(SUBS) do
+    w(string.format("build/dda run scripts/paper/blast.lua --set figure=%s%s --out %s/%s", sub:gsub("^fig", ""),
+                    S.spacing ~= 2 and string.format(" --set spacing=%g", S.spacing) or "", S.dir, sub))
+  end
+  w("```")
   w("")
   w("| figure | quantity | paper | ours | difference |")
   w("|---|---|---:|---:|---:|")
@@ -457,10 +470,10 @@ for _, S in ipairs(sets) do
     local q = S.prefix .. " " .. r.q
     csv_rows[#csv_rows + 1] = string.format("%s,%s,%s,%s,%s", r.fig, q, r.paper and string.format("%.6g", r.paper) or "",
                                             r.ours and string.format("%.6g", r.ours) or "", r.unit)
-    summary:write(string.format("%s,%s,%s,%s,%s,%s,%s\n", r.fig, q, r.paper and string.format("%g", r.paper) or "",
-                                r.ours and string.format("%.4g", r.ours) or "", r.unit,
-                                r.paper and r.ours and string.format("%.1f", 100 * (r.ours - r.paper) / r.paper) or "",
-                                r.wall and string.format("%.1f", r.wall) or ""))
+    summary_lines[#summary_lines + 1] = string.format("%s,%s,%s,%s,%s,%s,%s", r.fig, q,
+      r.paper and string.format("%g", r.paper) or "", r.ours and string.format("%.4g", r.ours) or "", r.unit,
+      r.paper and r.ours and string.format("%.1f", 100 * (r.ours - r.paper) / r.paper) or "",
+      r.wall and string.format("%.1f", r.wall) or "")
     print(string.format("%-6s %-8s %-48s paper %-10s ours %s", S.prefix, r.fig, r.q, paper_cell(r),
                         r.ours and num(r.ours) or r.why))
   end
@@ -517,9 +530,10 @@ for _, S in ipairs(sets) do
     w("")
   end
 end
-summary:close()
+docs_output.write(out_csv, table.concat(summary_lines, "\n") .. "\n")
 print("written to " .. out_csv)
 
+current = notes_md
 w("### Notes")
 w("")
 local nf = notes_path and io.open(notes_path, "r")
@@ -531,38 +545,66 @@ else
   w("*No notes file (" .. tostring(notes_path) .. ").*")
 end
 w("")
-w(END)
+
+-- The sub-blocks of an existing Section 4 block: by their "<!-- set hN -->"
+-- lines, or (a block written before those lines) by their "### ... N m joints" headings.
+local function old_sets(block)
+  local parts, cur = {}, nil
+  for line in (block .. "\n"):gmatch("([^\n]*)\n") do
+    local id = line:match("^<!%-%- set (%S+) %-%->$")
+    if not id and not block:find("<!-- set ", 1, true) then
+      local n = line:match("^### .-([%d%.]+) m joints")
+      id = n and (string.format("h%g", tonumber(n)):gsub("%.", "p"))
+      if id and cur and cur.id == id then id = nil end
+    end
+    if line:match("^### Notes") or line == END then cur = nil
+    elseif id then
+      cur = { id = id, lines = {} }
+      parts[#parts + 1] = cur
+      if not line:match("^<!%-%-") then cur.lines[1] = "<!-- set " .. id .. " -->" end
+    end
+    if cur then cur.lines[#cur.lines + 1] = line end
+  end
+  return parts
+end
+
+-- The whole block: the header, every spacing's part (ours replacing the old
+-- one of the same spacing, the others kept in their order), the notes.
+local function section4_block(old_block)
+  local out = { table.concat(md, "\n") }
+  local ours = {}
+  for _, b in ipairs(set_blocks) do ours[b.id] = b end
+  local done = {}
+  for _, part in ipairs(old_block and old_sets(old_block) or {}) do
+    if not done[part.id] then
+      done[part.id] = true
+      local lines = ours[part.id] and ours[part.id].lines or part.lines
+      while #lines > 0 and lines[#lines] == "" do lines[#lines] = nil end
+      out[#out + 1] = table.concat(lines, "\n") .. "\n"
+    end
+  end
+  for _, b in ipairs(set_blocks) do
+    if not done[b.id] then
+      while #b.lines > 0 and b.lines[#b.lines] == "" do b.lines[#b.lines] = nil end
+      out[#out + 1] = table.concat(b.lines, "\n") .. "\n"
+    end
+  end
+  out[#out + 1] = table.concat(notes_md, "\n")
+  return table.concat(out, "\n") .. "\n" .. END
+end
+
+docs_output.write(outdir .. "/validation_section4.md", section4_block(nil) .. "\n")
+print("written to " .. outdir .. "/validation_section4.md")
 
 if docs then
-  -- validation.md: replace the marked block, or append it; the rest of the file stays as it is
   local path = docs .. "/validation.md"
-  local old = ""
-  local f = io.open(path, "r")
-  if f then old = f:read("a"); f:close() end
-  local block = table.concat(md, "\n")
-  local b = old:find(BEGIN, 1, true)
-  local e = b and select(2, old:find(END, b, true))
-  local new
-  if b and e then
-    new = old:sub(1, b - 1) .. block .. old:sub(e + 1)
-  elseif b then
-    error(path .. ": the section 4 begin marker has no end marker after it; fix the file by hand", 0)
-  else
-    new = old:gsub("%s+$", "") .. (old ~= "" and "\n\n" or "") .. block .. "\n"
-  end
-  f = assert(io.open(path, "w")); f:write(new); f:close()
-
-  -- validation.csv: drop the Section 4 rows (figures fig14* ... fig18), keep the others, append ours
-  path = docs .. "/validation.csv"
-  local lines = {}
-  f = io.open(path, "r")
-  if f then
-    for l in f:lines() do if not l:match("^fig1[4-8]") then lines[#lines + 1] = l end end
-    f:close()
-  end
-  if #lines == 0 then lines[1] = "figure,quantity,paper,ours,unit" end
-  for _, l in ipairs(csv_rows) do lines[#lines + 1] = l end
-  f = assert(io.open(path, "w")); f:write(table.concat(lines, "\n"), "\n"); f:close()
-  print(string.format("wrote the Section 4 block of %s/validation.md, %d rows of %s (figures: %d)", docs, #csv_rows,
-                      path, #figure_files))
+  local old = docs_output.find_block(docs_output.read(path) or "", BEGIN, END)
+  docs_output.replace_block(path, BEGIN, END, section4_block(old))
+  local replaced, added, kept = docs_output.merge_csv(docs .. "/validation.csv", "figure,quantity,paper,ours,unit",
+                                                      csv_rows)
+  print(string.format("wrote the Section 4 block of %s (spacings given: %d); %s/validation.csv: %d rows replaced, " ..
+                      "%d added, %d kept (figures: %d)", path, #set_blocks, docs, replaced, added, kept,
+                      #figure_files))
+else
+  print("docs/ left as it is (--set write_docs=true writes the report there)")
 end

@@ -7,25 +7,36 @@
 --          with their default parameters (the full runs, about 40 bar runs).
 --          Definitions of every measured quantity: scripts/paper/wave.lua.
 -- Run:     build/dda run scripts/paper/validation_report.lua [--set figures=fig3,fig7]
---                   [--set docs=docs] [--out out/validation]
--- Writes:  <docs>/validation.md (paper vs ours, difference, T/dt, targets, notes on
---          differences over 10 %, plots), <docs>/validation.csv
---          (figure,quantity,paper,ours,unit), <docs>/figures/*.png (the plots);
+--                   [--set write_docs=true [--set docs=docs]] [--out out/validation]
+-- Writes:  <report>/validation.md (paper vs ours, difference, T/dt, targets, notes on
+--          differences over 10 %, plots), <report>/validation.csv
+--          (figure,quantity,paper,ours,unit), <report>/figures/*.png (the plots);
 --          the runs' histories and per-figure numbers under the --out folder.
---          <docs> is relative to the repository root (two folders above this script).
+--          <report> is the --out folder, or, only with --set write_docs=true, the
+--          committed report <docs> (relative to the repository root, two folders
+--          above this script; every figure must be run then: the report is one
+--          document, and a subset would drop the others).
 --          The Section 4 (blast) part that blast_summary.lua writes is kept: the
 --          marked block of the old validation.md goes back at the end, and the
 --          old validation.csv rows of figures fig14* ... fig18 after the new rows.
 
 local dda = require "dda"
 local wave = require "wave"
+local docs_output = require "docs_output"
 
 local here = debug.getinfo(1, "S").source:gsub("^@", ""):match("^(.*)/[^/]*$") or "."
 local root = here .. "/../.."
-local docs = root .. "/" .. tostring(dda.param("docs", "docs"))
-local wanted = tostring(dda.param("figures",
-  "fig3_joint_stiffness,fig4_frequency,fig5_joint_strength,fig6_joint_direction," ..
-  "fig7_fixed_free,fig8_vbc_sbc,fig10_model4,fig11_models5_6"))
+local all_figures = "fig3_joint_stiffness,fig4_frequency,fig5_joint_strength,fig6_joint_direction," ..
+                    "fig7_fixed_free,fig8_vbc_sbc,fig10_model4,fig11_models5_6"
+local wanted = tostring(dda.param("figures", all_figures))
+local write_docs = dda.param("write_docs", false)
+local docs_param = tostring(dda.param("docs", "docs"))
+if write_docs and wanted ~= all_figures then
+  error("--set write_docs=true needs every figure (the report is one document; a subset would drop the others' " ..
+        "sections): leave out --set figures, or leave out write_docs to write the report into the --out folder", 0)
+end
+local docs = write_docs and (docs_param:sub(1, 1) == "/" and docs_param or root .. "/" .. docs_param)
+             or dda.out_dir()
 
 local figs = {}
 local started = os.time()
@@ -178,14 +189,11 @@ for _, t in ipairs(all_pass) do w("- PASS " .. t) end
 w("")
 
 if section4_md then w(section4_md) end
-local f = assert(io.open(docs .. "/validation.md", "w"))
-f:write(table.concat(md, "\n"), "\n")
-f:close()
-wave.write_rows(docs .. "/validation.csv", rows)
-if #section4_csv > 0 then
-  f = assert(io.open(docs .. "/validation.csv", "a"))
-  f:write(table.concat(section4_csv, "\n"), "\n")
-  f:close()
-end
+docs_output.write(docs .. "/validation.md", table.concat(md, "\n") .. "\n")
+-- validation.csv: this report's rows first, then the Section 4 rows kept as they were
+local lines = {}
+for _, r in ipairs(rows) do lines[#lines + 1] = wave.csv_row(r) end
+for _, l in ipairs(section4_csv) do lines[#lines + 1] = l end
+docs_output.write(docs .. "/validation.csv", "figure,quantity,paper,ours,unit\n" .. table.concat(lines, "\n") .. "\n")
 print(string.format("wrote %s/validation.md, %s/validation.csv (%d rows; targets %d passed, %d failed)",
                     docs, docs, #rows, #all_pass, #all_fail))

@@ -208,12 +208,14 @@ local function csv_num(v)
   return string.format("%.6g", v)
 end
 
+function wave.csv_row(r)
+  return string.format("%s,%s,%s,%s,%s", r.figure, r.quantity, csv_num(r.paper), csv_num(r.ours), r.unit)
+end
+
 function wave.write_rows(path, rows)
   local f = assert(io.open(path, "w"))
   f:write("figure,quantity,paper,ours,unit\n")
-  for _, r in ipairs(rows) do
-    f:write(string.format("%s,%s,%s,%s,%s\n", r.figure, r.quantity, csv_num(r.paper), csv_num(r.ours), r.unit))
-  end
+  for _, r in ipairs(rows) do f:write(wave.csv_row(r), "\n") end
   f:close()
 end
 
