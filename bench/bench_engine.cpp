@@ -38,8 +38,8 @@
 #include <vector>
 
 #include "scenes.hpp"  // tests/engine: test::brick_wall, test::rectangle
-#include "solver/linear_solver.hpp"
 #include "solver/multigrid.hpp"
+#include "solver/pcg.hpp"
 #include "world/world.hpp"
 
 using namespace dda;
@@ -105,7 +105,7 @@ Result run(const std::string& scene, int threads, const std::string& pre, int wa
     w = test::brick_wall(std::atoi(scene.c_str() + 4));
   }
   w.controls().threads = threads;
-  w.controls().preconditioner = parse_pre(pre);
+  w.controls().solver.pcg.preconditioner = parse_pre(pre);
   auto step = [&] {
     if (is_bar) {
       const double t = w.time() + 2e-6;
@@ -161,7 +161,7 @@ void solver_table(const std::vector<std::string>& scenes, int steps) {
     World w;
     w = test::brick_wall(std::atoi(scene.c_str() + 4));
     w.controls().threads = 1;
-    w.controls().preconditioner = Preconditioning::Multigrid;
+    w.controls().solver.pcg.preconditioner = Preconditioning::Multigrid;
     // At least `steps` steps, then on until a step ran at the full Δt = g1
     // (early steps may have been cut while the wall settles).
     for (int s = 0; s < steps || (s < steps + 6 && w.last_stats().dt < w.controls().g1); ++s) w.step();

@@ -63,25 +63,25 @@ void parse_controls(const Options& o, Controls& c) {
   c.cg_static_tolerance = o.positive("cg_static_tolerance", c.cg_static_tolerance);
   c.predict_states = o.boolean("predict_states", c.predict_states);
   if (o.has("jacobi_refresh_tolerance")) {
-    c.jacobi_refresh_tolerance = o.number("jacobi_refresh_tolerance");
-    if (!(c.jacobi_refresh_tolerance >= 0 && c.jacobi_refresh_tolerance < 1))
-      fail(call, ": option 'jacobi_refresh_tolerance' must lie in [0, 1), got ", c.jacobi_refresh_tolerance);
+    c.solver.pcg.jacobi_refresh_tolerance = o.number("jacobi_refresh_tolerance");
+    if (!(c.solver.pcg.jacobi_refresh_tolerance >= 0 && c.solver.pcg.jacobi_refresh_tolerance < 1))
+      fail(call, ": option 'jacobi_refresh_tolerance' must lie in [0, 1), got ", c.solver.pcg.jacobi_refresh_tolerance);
   }
   if (o.has("preconditioner")) {
     const std::string p = o.string("preconditioner");
     if (p == "auto")
-      c.preconditioner = Preconditioning::Auto;
+      c.solver.pcg.preconditioner = Preconditioning::Auto;
     else if (p == "block_jacobi")
-      c.preconditioner = Preconditioning::BlockJacobi;
+      c.solver.pcg.preconditioner = Preconditioning::BlockJacobi;
     else if (p == "multigrid")
-      c.preconditioner = Preconditioning::Multigrid;
+      c.solver.pcg.preconditioner = Preconditioning::Multigrid;
     else
       fail(call, ": option 'preconditioner' must be \"auto\", \"block_jacobi\" or \"multigrid\", got \"", p, "\"");
   }
   if (o.has("patch_hops")) {
     const long n = o.integer("patch_hops", 0);
     if (n < 0) fail(call, ": option 'patch_hops' must be zero (off) or positive, got ", n);
-    c.patch_hops = static_cast<int>(n);
+    c.solver.pcg.patch_hops = static_cast<int>(n);
   }
   if (o.has("cg_max_iterations")) {
     const long n = o.integer("cg_max_iterations", 0);
@@ -121,15 +121,15 @@ void push_controls(lua_State* L, const Controls& c) {
   num("cg_tolerance", c.cg_tolerance);
   num("cg_open_close_tolerance", c.cg_open_close_tolerance);
   num("cg_static_tolerance", c.cg_static_tolerance);
-  num("jacobi_refresh_tolerance", c.jacobi_refresh_tolerance);
+  num("jacobi_refresh_tolerance", c.solver.pcg.jacobi_refresh_tolerance);
   lua_pushboolean(L, c.predict_states);
   lua_setfield(L, -2, "predict_states");
-  lua_pushstring(L, c.preconditioner == Preconditioning::Auto          ? "auto"
-                    : c.preconditioner == Preconditioning::BlockJacobi ? "block_jacobi"
-                                                                       : "multigrid");
+  lua_pushstring(L, c.solver.pcg.preconditioner == Preconditioning::Auto          ? "auto"
+                    : c.solver.pcg.preconditioner == Preconditioning::BlockJacobi ? "block_jacobi"
+                                                                                  : "multigrid");
   lua_setfield(L, -2, "preconditioner");
   integer("cg_max_iterations", c.cg_max_iterations);
-  integer("patch_hops", c.patch_hops);
+  integer("patch_hops", c.solver.pcg.patch_hops);
   integer("threads", c.threads);
 }
 

@@ -8,7 +8,6 @@
 #include "core/error.hpp"
 #include "core/parallel.hpp"
 #include "geometry/polygon.hpp"
-#include "solver/preconditioner_choice.hpp"
 #include "world/world_impl.hpp"
 
 namespace dda {
@@ -168,7 +167,7 @@ void World::resolve_controls() {
   require(c.cut_factor > 0 && c.cut_factor < 1, "cut factor must lie in (0, 1), got ", c.cut_factor);
   require(c.max_step_cuts >= 0, "max step cuts must be zero or positive");
   require(std::isfinite(c.cg_tolerance) && c.cg_tolerance > 0, "CG tolerance must be positive, got ", c.cg_tolerance);
-  require(c.patch_hops >= 0, "patch hops must be zero (off) or positive, got ", c.patch_hops);
+  require(c.solver.pcg.patch_hops >= 0, "patch hops must be zero (off) or positive, got ", c.solver.pcg.patch_hops);
   require(std::isfinite(c.cg_open_close_tolerance) && c.cg_open_close_tolerance > 0,
           "open-close CG tolerance must be positive, got ", c.cg_open_close_tolerance);
   require(std::isfinite(c.cg_static_tolerance) && c.cg_static_tolerance > 0,
@@ -190,25 +189,18 @@ void World::resolve_controls() {
   }
   m.elastic.resize(rocks_.size());
   for (std::size_t r = 0; r < rocks_.size(); ++r) m.elastic[r] = elastic_matrix(rocks_[r], c.plane);
-  // Preconditioner: chosen per step (Auto looks at the system), rebuilt only
-  // when the choice changes.
-  // Auto switches on the last step's CG iterations per solve, which are the
-  // same for any thread count, so the choice stays deterministic.
-  SystemTraits traits(static_cast<int>(block_count()));
-  if (m.preconditioner_kind && last_stats_.open_close_iterations > 0) {
-    traits.last_kind = *m.preconditioner_kind;
-    traits.last_cg_per_solve = static_cast<double>(last_stats_.cg_iterations) / last_stats_.open_close_iterations;
-  }
-  const Preconditioning kind = choose_preconditioning(c.preconditioner, traits);
-  if (!m.preconditioner_kind || *m.preconditioner_kind != kind) {
-    m.solver.set_preconditioner(make_preconditioner(kind));
-    m.preconditioner_kind = kind;
-  }
-  if (auto* jacobi = dynamic_cast<BlockJacobi*>(&m.solver.preconditioner()))
-    jacobi->refresh_tolerance = c.jacobi_refresh_tolerance;
+  // The linear solver: told once per step what the step's solves are like.
+  if (!m.solver) m.solver = make_linear_solver(c.solver);
+  StepSolveInfo info;
+  info.blocks = static_cast<int>(block_count());
+  info.block_centroids = centroid_;
+  info.local_resolves = !previous_step_had_long_solves();
+  info.last_step_solves = last_stats_.open_close_iterations;
+  info.last_step_iterations = last_stats_.cg_iterations;
+  m.solver->begin_step(c.solver, info);
   m.tan_friction.resize(joints_.size());
   for (std::size_t j = 0; j < joints_.size(); ++j) m.tan_friction[j] = std::tan(deg_to_rad(joints_[j].friction_deg));
-  m.solver.max_iterations = c.cg_max_iterations > 0 ? c.cg_max_iterations : static_cast<int>(60 * block_count() + 100);
+  m.solver->max_iterations = c.cg_max_iterations > 0 ? c.cg_max_iterations : static_cast<int>(60 * block_count() + 100);
 }
 
 // ---- Stage: DetectContacts --------------------------------------------------
@@ -299,6 +291,12 @@ void World::detect_contacts() {
 
 // ---- Stage: open-close loop { Assemble → Solve → CheckContacts } -------------
 
+bool World::previous_step_had_long_solves() const {
+  constexpr double kLooseAboveIterations = 30;  // CG iterations per solve in the last step
+  return last_stats_.open_close_iterations > 0 &&
+         last_stats_.cg_iterations > kLooseAboveIterations * last_stats_.open_close_iterations;
+}
+
 int World::solve_step(double dt) {
   Impl& m = *impl_;
   auto t0 = Clock::now();
@@ -314,9 +312,7 @@ int World::solve_step(double dt) {
       1024);
   const int n = static_cast<int>(block_count());
   m.solution.resize(6 * n);
-  constexpr double kLooseAboveIterations = 30;  // CG iterations per solve in the last step
-  const bool long_solves = last_stats_.open_close_iterations > 0 &&
-                           last_stats_.cg_iterations > kLooseAboveIterations * last_stats_.open_close_iterations;
+  const bool long_solves = previous_step_had_long_solves();
   // Warm start. Short solves (wave problems): the displacement the last
   // step's acceleration would give, (1 + gg)·v·Δt − d_last (with
   // v = 2·d_last/Δt − gg·v_before, that is d = gg·v·Δt + a·Δt²/2 with the
@@ -361,27 +357,22 @@ int World::solve_step(double dt) {
   const double loose = long_solves ? std::max(tight, controls_.cg_open_close_tolerance) : tight;
   // Long solves are dominated by the mat-vec: multiply with stored blocks.
   m.system.store_products(long_solves);
-  // Wave problems: a re-solve after a few contacts changed starts on their
-  // patch (see PcgSolver::patch_hops). Not for long solves: there a local
-  // change reaches far (the correction does not die out within a patch).
-  m.solver.patch_hops = long_solves ? 0 : controls_.patch_hops;
   bool settled = false;
   bool tightening = false;
   bool first_solve = true;
   for (int it = 0; it < controls_.open_close_limit && !settled; ++it) {
     ++m.open_close_iterations;
-    m.solver.tolerance = tightening ? tight : loose;
+    m.solver->tolerance = tightening ? tight : loose;
     t0 = Clock::now();
     assemble_contacts(/*all_rows=*/it == 0 && !tightening);
     m.t_assemble += seconds_since(t0);
 
     t0 = Clock::now();
-    m.solver.preconditioner().set_block_centroids(centroid_);
-    m.solver.set_operator(m.system);
+    m.solver->set_operator(m.system);
     // After the first solve only the reassembled rows changed: the solver
     // keeps the last residual elsewhere.
     const SolveReport report =
-        first_solve ? m.solver.solve(m.rhs, m.solution) : m.solver.resolve(m.rhs, m.solution, m.row_reassembled);
+        first_solve ? m.solver->solve(m.rhs, m.solution) : m.solver->resolve(m.rhs, m.solution, m.row_reassembled);
     first_solve = false;
     m.cg_iterations += report.iterations;
     m.patch_iterations += report.patch_iterations;
@@ -407,7 +398,7 @@ int World::solve_step(double dt) {
     // whose states then changed.)
     if (changed) {
       tightening = false;
-    } else if (m.solver.tolerance == tight) {
+    } else if (m.solver->tolerance == tight) {
       settled = true;
     } else {
       tightening = true;

@@ -16,14 +16,9 @@
 #include "core/types.hpp"
 #include "loading/history.hpp"
 #include "solver/block_sparse_matrix.hpp"
+#include "solver/solver_settings.hpp"
 
 namespace dda {
-
-// The PCG preconditioner. Block-Jacobi (the inverse of each block's 6×6
-// diagonal) is cheap and enough where inertia dominates (waves); a multigrid
-// preconditioner pays off where contacts and elasticity dominate (quasi-static
-// walls, slopes). Auto picks by the system at hand.
-enum class Preconditioning { Auto, BlockJacobi, Multigrid };
 
 struct Controls {
   PlaneMode plane = PlaneMode::Stress;
@@ -81,19 +76,9 @@ struct Controls {
   // step; not done after long solves, whose warm start predicts nothing).
   // The answer is another consistent set of states, not the same bits.
   bool predict_states = true;
-  // In wave problems (short solves), an open-close iteration's re-solve first
-  // solves on the rows whose contacts changed and those within this many
-  // couplings of them, the rest held (PcgSolver::patch_hops); 0: off. The
-  // global PCG then checks the whole residual and finishes if need be, so
-  // the solve meets cg_tolerance either way.
-  int patch_hops = 8;
-  Preconditioning preconditioner = Preconditioning::Auto;
-  // Block-Jacobi keeps a block's inverse while every entry of the diagonal
-  // block stays within this fraction (of its largest entry) of the block the
-  // inverse was made from. How fast the CG converges depends on it, and
-  // where a loose open-close solve stops (which friction's normal force
-  // sees), not the tolerance reached; 0: invert every rewritten block anew.
-  double jacobi_refresh_tolerance = 1e-4;
+  // The linear solver's own knobs (solver/solver_settings.hpp): the PCG's
+  // preconditioner, block-Jacobi refresh tolerance and re-solve patches.
+  SolverSettings solver;
   int cg_max_iterations = 0;  // 0 → 10 × unknowns + 100
   int threads = 0;            // 0 → every core
 };
@@ -249,9 +234,10 @@ class World {
   void save_contact_states();     // the contacts' iteration state at the start of a step
   void restore_contact_states();  // back to it, for a redo
   double contact_range() const;
-  int solve_step(double dt);             // loop { assemble, solve, check contacts }; 0 or a rejection
-  void assemble_block_terms(double dt);  // elastic, inertia, stress, gravity per block
-  void assemble_point_terms(double dt);  // loads, fixed points, targets, boundaries at t + Δt
+  bool previous_step_had_long_solves() const;  // over 30 CG iterations per solve
+  int solve_step(double dt);                   // loop { assemble, solve, check contacts }; 0 or a rejection
+  void assemble_block_terms(double dt);        // elastic, inertia, stress, gravity per block
+  void assemble_point_terms(double dt);        // loads, fixed points, targets, boundaries at t + Δt
   void assemble_contacts(
       bool all_rows);  // block terms + contact springs and friction (all rows, or those whose contacts changed)
   void predict_contact_states();  // the open-close iteration's first guess, from the warm start

@@ -57,9 +57,8 @@ struct World::Impl {
   std::unique_ptr<tbb::task_arena> arena;
   int arena_threads = -1;
 
-  ContactOperator system;  // the matrix of the step, matrix-free off the diagonal
-  PcgSolver solver;
-  std::optional<Preconditioning> preconditioner_kind;
+  ContactOperator system;                // the matrix of the step, matrix-free off the diagonal
+  std::unique_ptr<LinearSolver> solver;  // made on the first step (make_linear_solver)
   VecX rhs, solution;
   std::vector<Symmetric6> own_k;     // block terms of the diagonal (elastic, inertia, fixed points)
   std::vector<Vec6> own_f;           // block terms of the right-hand side
@@ -80,7 +79,6 @@ struct World::Impl {
   std::vector<double> rotation_since_detection;
   double detected_range = 0;
   long detections = 0;
-  Rejection last_rejection = Rejection::None;
   double largest_displacement =
       0;  // of the last solve's vertices (the step's g2 ratio; widens the automatic contact range)
   BlockId inverted_block = -1;  // the first block the last rejected attempt would have turned inside out

@@ -232,8 +232,8 @@ TEST(Solver, JacobiRefreshToleranceReachesThePreconditioner) {
     // Cohesionless joints open and close behind the wave: their springs come
     // and go, and the diagonal blocks with them.
     w.joint_material(0) = JointMaterial{30, 0, 0};
-    w.controls().preconditioner = Preconditioning::BlockJacobi;
-    w.controls().jacobi_refresh_tolerance = refresh;
+    w.controls().solver.pcg.preconditioner = Preconditioning::BlockJacobi;
+    w.controls().solver.pcg.jacobi_refresh_tolerance = refresh;
     cg = 0;
     for (int i = 0; i < 40; ++i) cg += w.step().cg_iterations;
     std::vector<Vec2> centroids;
@@ -322,7 +322,7 @@ TEST(OpenClose, PatchResolvesSaveIterationsWithinTheTimeStepError) {
   auto run = [](int hops, double dt, StepStats& sum) {
     World w = test::kicked_bar(60, 3, 1.0);
     w.joint_material(0) = JointMaterial{30, 0, 0};
-    w.controls().patch_hops = hops;
+    w.controls().solver.pcg.patch_hops = hops;
     w.controls().g1 = dt;
     return centroids_after(w, 6e-4, sum);
   };

@@ -7,7 +7,8 @@
 
 #include "assembly/contact_operator.hpp"
 #include "scenes.hpp"
-#include "solver/linear_solver.hpp"
+#include "solver/direct_solver.hpp"
+#include "solver/pcg.hpp"
 
 using namespace dda;
 
