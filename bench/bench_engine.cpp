@@ -123,12 +123,12 @@ Result run(const std::string& scene, int threads, const std::string& pre, int wa
       r.cuts += st.step_cuts;
       r.oc_per_step += st.open_close_iterations;
       r.cg_per_step += st.cg_iterations;
-      r.detect += st.t_detect;
-      r.assemble += st.t_assemble;
-      r.solve += st.t_solve;
-      r.check += st.t_check;
-      r.update += st.t_update;
-      r.total += st.t_total;
+      r.detect += st.profile[Stage::DetectContacts];
+      r.assemble += st.profile[Stage::Assemble];
+      r.solve += st.profile[Stage::Solve];
+      r.check += st.profile[Stage::CheckContacts];
+      r.update += st.profile[Stage::Update];
+      r.total += st.profile.total;
       r.contacts = st.contacts;
       if (std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count() > budget && r.steps >= 3) break;
     }

@@ -19,6 +19,7 @@
 #include <vector>
 
 #include "core/types.hpp"
+#include "geometry/edge.hpp"
 
 namespace dda::geometry {
 
@@ -116,12 +117,6 @@ struct CutBlock {
   int rock_material = 0;
   double area = 0;
   Vec2 centroid = Vec2::Zero();
-};
-
-struct EdgeRef {
-  int block = -1;
-  int edge = -1;
-  friend bool operator==(const EdgeRef&, const EdgeRef&) = default;
 };
 
 // Figures from one cut, for benchmarks and diagnostics.
