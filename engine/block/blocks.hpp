@@ -28,6 +28,7 @@ struct Blocks {
   // Cold: parallel to vertices, and per block.
   std::vector<Vec2> initial_vertices;  // where each vertex started
   std::vector<int> edge_joint;         // joint material of edge k → k + 1
+  std::vector<EdgeTag> edge_tag;       // what edge k → k + 1 was made from
   std::vector<Vec2> initial_centroid;
 
   std::size_t count() const { return vertex_start.empty() ? 0 : vertex_start.size() - 1; }

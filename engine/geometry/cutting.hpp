@@ -98,16 +98,6 @@ struct CutInput {
   int inner_cut_material = -1;
 };
 
-enum class EdgeKind { Joint, DomainBoundary, HoleBoundary };
-
-struct EdgeTag {
-  EdgeKind kind = EdgeKind::Joint;
-  int joint_material = -1;  // for Joint edges, else -1
-  int hole = -1;            // 0-based hole index for HoleBoundary edges, else -1
-
-  friend bool operator==(const EdgeTag&, const EdgeTag&) = default;
-};
-
 struct CutBlock {
   // Counter-clockwise; only true corners (where the outline goes straight on
   // and the edge tag does not change, the vertex is left out). A neighbour's

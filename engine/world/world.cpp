@@ -50,7 +50,8 @@ BlockId World::check(BlockId b) const {
   return b;
 }
 
-BlockId World::add_block(std::vector<Vec2> vertices, int rock_material, std::vector<int> edge_joints) {
+BlockId World::add_block(std::vector<Vec2> vertices, int rock_material, std::vector<int> edge_joints,
+                         std::vector<EdgeTag> edge_tags) {
   const BlockId id = static_cast<BlockId>(block_count());
   const std::string what = msg("block ", id);
   validate_simple_polygon(vertices, what);
@@ -61,20 +62,28 @@ BlockId World::add_block(std::vector<Vec2> vertices, int rock_material, std::vec
     throw Error(msg(what, ": ", edge_joints.size(), " edge joints given for ", vertices.size(), " edges"));
   for (int j : edge_joints)
     if (j < 0 || j >= joint_material_count()) throw Error(msg(what, ": unknown joint material ", j));
+  if (edge_tags.empty()) edge_tags.assign(vertices.size(), EdgeTag{});
+  if (edge_tags.size() != vertices.size())
+    throw Error(msg(what, ": ", edge_tags.size(), " edge tags given for ", vertices.size(), " edges"));
   if (signed_area(vertices) < 0) {
     // Store counter-clockwise. Edge k (k → k+1) becomes edge n-2-k of the
     // reversed outline (indices mod n).
     const int n = static_cast<int>(vertices.size());
     std::reverse(vertices.begin(), vertices.end());
-    std::vector<int> reversed(n);
-    for (int k = 0; k < n; ++k) reversed[((n - 2 - k) % n + n) % n] = edge_joints[k];
-    edge_joints = std::move(reversed);
+    auto reverse_edges = [n](auto& per_edge) {
+      auto reversed = per_edge;
+      for (int k = 0; k < n; ++k) reversed[((n - 2 - k) % n + n) % n] = per_edge[k];
+      per_edge = std::move(reversed);
+    };
+    reverse_edges(edge_joints);
+    reverse_edges(edge_tags);
   }
   Blocks& bl = s_.blocks;
   const PolygonMoments m = polygon_moments(vertices);
   bl.vertices.insert(bl.vertices.end(), vertices.begin(), vertices.end());
   bl.initial_vertices.insert(bl.initial_vertices.end(), vertices.begin(), vertices.end());
   bl.edge_joint.insert(bl.edge_joint.end(), edge_joints.begin(), edge_joints.end());
+  bl.edge_tag.insert(bl.edge_tag.end(), edge_tags.begin(), edge_tags.end());
   bl.vertex_start.push_back(static_cast<int>(bl.vertices.size()));
   bl.centroid.push_back(m.centroid);
   bl.initial_centroid.push_back(m.centroid);
@@ -183,6 +192,11 @@ int World::block_edge_joint(BlockId b, int edge) const {
   const int n = s_.blocks.vertex_count(b);
   if (edge < 0 || edge >= n) throw Error(msg("block ", b, " has no edge ", edge));
   return s_.blocks.edge_joint[s_.blocks.vertex_start[b] + edge];
+}
+
+const EdgeTag& World::block_edge_tag(BlockId b, int edge) const {
+  block_edge_joint(b, edge);  // checks both
+  return s_.blocks.edge_tag[s_.blocks.vertex_start[b] + edge];
 }
 
 Vec2 World::velocity_at(BlockId b, const Vec2& p) const {

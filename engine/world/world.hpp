@@ -40,9 +40,11 @@ class World {
 
   // A block from a simple polygon (either orientation; stored counter-clockwise).
   // edge_joints[k] is the joint material of the edge from vertex k to k+1 of the
-  // polygon as given (empty → all 0). Throws dda::Error for a degenerate polygon
-  // or an unknown material.
-  BlockId add_block(std::vector<Vec2> vertices, int rock_material, std::vector<int> edge_joints = {});
+  // polygon as given (empty → all 0), edge_tags[k] what that edge was made
+  // from (empty → all EdgeKind::Free). Throws dda::Error for a degenerate
+  // polygon or an unknown material. (Blocks cut from a domain: add_cut_blocks.)
+  BlockId add_block(std::vector<Vec2> vertices, int rock_material, std::vector<int> edge_joints = {},
+                    std::vector<EdgeTag> edge_tags = {});
 
   // Initial conditions.
   void set_block_velocity(BlockId b, const Vec6& velocity);
@@ -111,6 +113,7 @@ class World {
   std::span<const Vec2> block_vertices(BlockId b) const;
   std::span<const Vec2> block_initial_vertices(BlockId b) const;  // as added (counter-clockwise)
   int block_edge_joint(BlockId b, int edge) const;
+  const EdgeTag& block_edge_tag(BlockId b, int edge) const;
   Vec2 block_centroid(BlockId b) const { return s_.blocks.centroid[check(b)]; }
   double block_area(BlockId b) const { return s_.blocks.area[check(b)]; }
   double block_mass(BlockId b) const { return s_.blocks.mass[check(b)]; }

@@ -65,7 +65,7 @@ TEST_F(Model1Queries, EdgesOnASegment) {
     std::set<int> blocks;
     double length = 0;
     for (EdgeRef e : end) {
-      EXPECT_EQ(bar->tag(e).kind, EdgeKind::DomainBoundary);
+      EXPECT_EQ(bar->tag(e).kind, EdgeKind::Domain);
       length += bar->edge_length(e);
       blocks.insert(e.block);
     }
@@ -125,7 +125,7 @@ TEST(HoleQueries, BoundaryEdgesOfEachHole) {
   ASSERT_FALSE(roof.empty());
   double roof_length = 0;
   for (EdgeRef e : roof) {
-    EXPECT_EQ(set.tag(e).kind, EdgeKind::HoleBoundary);
+    EXPECT_EQ(set.tag(e).kind, EdgeKind::Hole);
     roof_length += set.edge_length(e);
   }
   EXPECT_NEAR(roof_length, 4.0, 1e-9);

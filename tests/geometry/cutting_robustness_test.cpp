@@ -138,7 +138,7 @@ TEST(TreeCutting, JointEndingInsideTheDomainMakesNoBlock) {
   EXPECT_EQ(set.blocks[0].vertices.size(), 4u);  // the joint's end on the boundary is not a corner
   EXPECT_NEAR(set.blocks[0].area, 100.0, 1e-12);
   EXPECT_GT(set.stats.dangling_edges_removed, 0);
-  for (const EdgeTag& t : set.blocks[0].edges) EXPECT_EQ(t.kind, EdgeKind::DomainBoundary);
+  for (const EdgeTag& t : set.blocks[0].edges) EXPECT_EQ(t.kind, EdgeKind::Domain);
 }
 
 TEST(TreeCutting, OnlyTheDanglingPartOfAJointGoes) {
@@ -198,7 +198,7 @@ TEST(Outlines, VertexStaysWhereTheEdgeTagChanges) {
   EXPECT_EQ(above.vertices.size(), 8u);
   int hole_edges = 0, joint_edges = 0;
   for (const EdgeTag& t : below.edges) {
-    hole_edges += t.kind == EdgeKind::HoleBoundary;
+    hole_edges += t.kind == EdgeKind::Hole;
     if (t.kind == EdgeKind::Joint) {
       ++joint_edges;
       EXPECT_EQ(t.joint_material, 3);
