@@ -7,6 +7,7 @@
 #include "lua_support.hpp"
 #include "script_helpers.hpp"
 #include "scripting.hpp"
+#include "world/controls.hpp"
 
 using namespace dda::script;
 
@@ -303,6 +304,27 @@ TEST_F(LuaApi, SolverControlsAreReadableWritableAndChecked) {
             std::string::npos);
   EXPECT_NE(error_of("m:controls{ patch_hops = 1.5 }").find("patch_hops"), std::string::npos);
   EXPECT_NE(error_of("m:controls{ cg_static_tolerance = 0 }").find("cg_static_tolerance"), std::string::npos);
+}
+
+// The Lua layer reads, writes and checks the controls through the engine's
+// table (world/controls.hpp): every control in it is in m:controls(), sets to
+// its own value, and out of its range gives the table's rule.
+TEST_F(LuaApi, ControlsFollowTheEngineTable) {
+  run("m = dda.model{}\n"
+      "n = 0\n"
+      "for k, v in pairs(m:controls()) do n = n + 1; m:controls{ [k] = v } end\n");
+  EXPECT_EQ(number("n"), static_cast<double>(dda::control_specs().size()));
+  for (const dda::ControlSpec& s : dda::control_specs()) {
+    run(std::string("v = m:controls().") + s.name + "\n");
+    lua_getglobal(L, "v");
+    EXPECT_FALSE(lua_isnil(L, -1)) << s.name;
+    lua_pop(L, 1);
+    if (s.type != dda::ControlType::Number && s.type != dda::ControlType::Integer) continue;
+    const double bad = s.range.min_open ? s.range.min : s.range.min - 1;
+    const std::string message = error_of("m:controls{ " + std::string(s.name) + " = " + std::to_string(bad) + " }");
+    EXPECT_NE(message.find(std::string("m:controls: option '") + s.name + "' " + s.range.rule), std::string::npos)
+        << message;
+  }
 }
 
 // FHI: direction × magnitude table, handed to the engine.
