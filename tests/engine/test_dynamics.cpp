@@ -4,7 +4,7 @@
 
 #include <cmath>
 
-#include "scenes.hpp"
+#include "../scenes.hpp"
 
 using namespace dda;
 

@@ -10,7 +10,7 @@
 #include <cstdio>
 #include <cstring>
 
-#include "scenes.hpp"
+#include "../scenes.hpp"
 #include "solver/direct_solver.hpp"
 #include "solver/multigrid.hpp"
 #include "solver/pcg.hpp"

@@ -3,7 +3,9 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 
+#include "../scenes.hpp"
 #include "lua_support.hpp"
 #include "script_helpers.hpp"
 #include "scripting.hpp"
@@ -325,6 +327,26 @@ TEST_F(LuaApi, ControlsFollowTheEngineTable) {
     EXPECT_NE(message.find(std::string("m:controls: option '") + s.name + "' " + s.range.rule), std::string::npos)
         << message;
   }
+}
+
+// wall(n) is defined in scripts/bench/scenes.lua (canonical: benchmarks and
+// scripts) and in tests/scenes.hpp (C++ tests and benchmarks): the same
+// model, step after step (state hashes after 3 steps of wall(3)).
+TEST_F(LuaApi, BrickWallIsTheSameSceneInLuaAndCpp) {
+  const std::string folder = (dda::test::source_dir() / "scripts" / "bench").string();
+  run("package.path = '" + folder +
+      "/?.lua;' .. package.path\n"
+      "local scenes = require 'scenes'\n"
+      "local m = scenes.wall(3, 1)\n"
+      "m:step(3)\n"
+      "hash, blocks = m:hash(), #m:blocks{}\n");
+  dda::World w = dda::test::brick_wall(3);
+  w.controls().threads = 1;
+  for (int i = 0; i < 3; ++i) w.step();
+  char hash[32];
+  std::snprintf(hash, sizeof hash, "%016llx", static_cast<unsigned long long>(w.state_hash()));
+  EXPECT_EQ(number("blocks"), static_cast<double>(w.block_count()));
+  EXPECT_EQ(string("hash"), hash);
 }
 
 // FHI: direction × magnitude table, handed to the engine.
