@@ -291,7 +291,7 @@ void ScriptModel::record(Monitor& m) {
 
 double ScriptModel::load_time() const {
   // The World takes Δt = min(current Δt, g1), g1 from the controls or
-  // estimated from Eqs. 1–3 (see World::resolve_controls).
+  // estimated from Eqs. 1–3 (see Stepper::derive_automatic_controls).
   const World& w = *world_;
   double g1 = w.controls().g1;
   if (!(g1 > 0)) g1 = w.suggested_time_step();

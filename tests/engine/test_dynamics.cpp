@@ -195,7 +195,7 @@ TEST(Determinism, SameStateHashForOneTwoAndFourThreads) {
   EXPECT_EQ(run_grid_scene(1), h1);
 }
 
-// Re-solves on patches (Controls::patch_hops): a bar of 1 m blocks with
+// Re-solves on patches (PcgSettings::patch_hops): a bar of 1 m blocks with
 // cohesionless joints, whose contacts open and close behind the wave.
 std::uint64_t run_patch_scene(int threads) {
   World w = test::kicked_bar(60, 3, 1.0);
@@ -219,7 +219,7 @@ TEST(Determinism, WaveProblemSameStateHashForOneTwoAndFourThreads) {
   EXPECT_EQ(run_wave_scene(4), h1);
 }
 
-// Controls::jacobi_refresh_tolerance reaches the block-Jacobi preconditioner:
+// PcgSettings::jacobi_refresh_tolerance reaches the block-Jacobi preconditioner:
 // with 0.5 most inverses serve on while contacts open and close around them,
 // so the CG needs more iterations
 // than with 0 (every rewritten block inverted anew); the preconditioner only
@@ -308,7 +308,7 @@ TEST(OpenClose, PredictedStatesSaveIterationsWithinTheTimeStepError) {
   EXPECT_LE(by_prediction, 0.5 * by_time_step) << by_prediction << " m against " << by_time_step << " m";
 }
 
-// Controls::patch_hops: an open-close iteration's re-solve starts on the
+// PcgSettings::patch_hops: an open-close iteration's re-solve starts on the
 // patch around the contacts that changed. Every solve still meets
 // cg_tolerance over all rows, so the answer differs only as much as two
 // solves within that tolerance can, and the open-close iteration's
