@@ -702,7 +702,7 @@ int main(int argc, char** argv) {
   for (int wn : walls) {
     World w = test::brick_wall(wn);
     w.controls().threads = 1;
-    w.controls().preconditioner = Preconditioning::BlockJacobi;
+    w.controls().solver.pcg.preconditioner = Preconditioning::BlockJacobi;
     for (int s = 0; s < 3; ++s) w.step();
     const BlockSparseMatrix& bsm = w.last_matrix();
     const SpMat a = bsm.to_sparse();

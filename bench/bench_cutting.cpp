@@ -14,15 +14,14 @@
 #include <vector>
 
 #include "geometry/cutting.hpp"
+#include "scenes.hpp"  // tests/: test::rectangle
 
 using dda::Vec2;
 using namespace dda::geometry;
 
 namespace {
 
-std::vector<Vec2> rectangle(double x0, double y0, double x1, double y1) {
-  return {Vec2(x0, y0), Vec2(x1, y0), Vec2(x1, y1), Vec2(x0, y1)};
-}
+using dda::test::rectangle;  // (x0, y0, width, height)
 
 JointSet persistent_set(double dip, double spacing, Vec2 origin = Vec2::Zero()) {
   JointSet s;
@@ -54,7 +53,7 @@ std::vector<Case> cases() {
   {
     Case c{"Section 4 (100 m, 45/135 deg at 2 m, 8 m x 4 m chamber)", {}};
     c.input.domain = rectangle(0, 0, 100, 100);
-    c.input.holes = {rectangle(46, 48, 54, 52)};
+    c.input.holes = {rectangle(46, 48, 8, 4)};
     c.input.sets = {persistent_set(45, 2, Vec2(50, 50)), persistent_set(135, 2, Vec2(50, 50))};
     out.push_back(c);
   }
@@ -73,7 +72,7 @@ std::vector<Case> cases() {
   {
     Case c{"100 m x 100 m, 20/110 deg at 0.5 m + chamber", {}};
     c.input.domain = rectangle(0, 0, 100, 100);
-    c.input.holes = {rectangle(46, 48, 54, 52)};
+    c.input.holes = {rectangle(46, 48, 8, 4)};
     c.input.sets = {persistent_set(20, 0.5, Vec2(0.123, 0.456)), persistent_set(110, 0.5, Vec2(0.123, 0.456))};
     out.push_back(c);
   }

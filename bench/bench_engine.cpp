@@ -1,21 +1,15 @@
 // Engine step benchmark: the C++ core of the issue-8 benchmark command.
 //
-//   ./build/bench/bench_engine                       # wall(10,20,40), bar; 1 and 2 threads
+//   ./build/bench/bench_engine                       # wall(10,20,40); 1 and 2 threads
 //   ./build/bench/bench_engine --scenes wall10,wall40 --threads 2 --pre bj,mg
 //   ./build/bench/bench_engine --scenes wall100 --threads 2 --steps 3   # minutes per step today
 //   ./build/bench/bench_engine --budget 20 --steps 40 --csv out.csv
 //   ./build/bench/bench_engine --solver-only        # the linear solver alone, cold solves
 //
-// Scenes (built with World calls, as the Lua scene scripts do):
-//   wall(N)  quasi-static brick wall (gg = 0): N columns of 1 m × 0.5 m bricks, 2N rows
-//            in running bond (half bricks at alternate row ends) on a base 1 m
-//            thick held by three fixed points; ρ = 2600, E = 5 GPa, ν = 0.25,
-//            plane stress, friction 30°, gravity, Δt = 1e-3 s, g2 = 0.001,
-//            g0 = 50E, open-close limit 8 (211 / 821 / 3,241 / 20,101 blocks
-//            for N = 10 / 20 / 40 / 100);
-//   bar      the paper's rock bar Model 1 (100 × 5 blocks of 0.2 m, g1 = 2e-6 s,
-//            a 1 kHz sine pulse on the left end, fixed right end): a wave
-//            problem where inertia dominates.
+// Scenes: wall(N), the quasi-static brick wall of scripts/bench/scenes.lua
+// (tests/scenes.hpp: test::brick_wall; 211 / 821 / 3,241 / 20,101 blocks for
+// N = 10 / 20 / 40 / 100). The wave problems (blast, the rock bar) are
+// benchmarked from Lua: scripts/bench/bench.lua.
 //
 // Each (scene, threads, preconditioner) runs in a child process, so that its
 // peak RSS is its own. A few warm-up steps are run first (not timed), then
@@ -37,42 +31,14 @@
 #include <string>
 #include <vector>
 
-#include "scenes.hpp"  // tests/engine: test::brick_wall, test::rectangle
-#include "solver/linear_solver.hpp"
+#include "scenes.hpp"  // tests/: test::brick_wall
 #include "solver/multigrid.hpp"
+#include "solver/pcg.hpp"
 #include "world/world.hpp"
 
 using namespace dda;
 
 namespace {
-
-struct Bar {
-  std::vector<int> loads;
-};
-
-Bar build_bar(World& w) {
-  const RockMaterial rock{2000, 50e9, 0.25};
-  const int m = w.add_rock_material(rock);
-  w.joint_material(0) = JointMaterial{40, 8e6, 8e6};
-  const double l = 0.2;
-  const int nx = 100, ny = 5;
-  for (int j = 0; j < ny; ++j)
-    for (int i = 0; i < nx; ++i) w.add_block(test::rectangle(i * l, j * l, l, l), m);
-  w.controls().g0 = 20 * rock.youngs;
-  w.controls().g1 = 2e-6;
-  Bar bar;
-  for (int j = 0; j < ny; ++j) {
-    const int b = j * nx;
-    bar.loads.push_back(w.add_point_load(b, Vec2(0, j * l), Vec2(0, 0)));
-    bar.loads.push_back(w.add_point_load(b, Vec2(0, (j + 1) * l), Vec2(0, 0)));
-  }
-  for (int j = 0; j < ny; ++j) {
-    const int b = j * nx + nx - 1;
-    w.add_fixed_point(b, Vec2(nx * l, j * l + 0.25 * l));
-    w.add_fixed_point(b, Vec2(nx * l, j * l + 0.75 * l));
-  }
-  return bar;
-}
 
 std::string display_name(const std::string& scene) {
   if (scene.rfind("wall", 0) == 0) return "wall(" + scene.substr(4) + ")";
@@ -96,24 +62,10 @@ Preconditioning parse_pre(const std::string& s) {
 
 Result run(const std::string& scene, int threads, const std::string& pre, int warmup, int max_steps, double budget) {
   Result r;
-  World w;
-  Bar bar;
-  const bool is_bar = scene == "bar";
-  if (is_bar) {
-    bar = build_bar(w);
-  } else {
-    w = test::brick_wall(std::atoi(scene.c_str() + 4));
-  }
+  World w = test::brick_wall(std::atoi(scene.c_str() + 4));
   w.controls().threads = threads;
-  w.controls().preconditioner = parse_pre(pre);
-  auto step = [&] {
-    if (is_bar) {
-      const double t = w.time() + 2e-6;
-      const double p = t < 1e-3 ? 5e6 * std::sin(2 * kPi * 1000 * t) : 0;
-      for (int k : bar.loads) w.set_point_load(k, Vec2(p * 0.2 / 2, 0));
-    }
-    return w.step();
-  };
+  w.controls().solver.pcg.preconditioner = parse_pre(pre);
+  auto step = [&] { return w.step(); };
   try {
     for (int s = 0; s < warmup; ++s) step();
     const auto t0 = std::chrono::steady_clock::now();
@@ -123,12 +75,12 @@ Result run(const std::string& scene, int threads, const std::string& pre, int wa
       r.cuts += st.step_cuts;
       r.oc_per_step += st.open_close_iterations;
       r.cg_per_step += st.cg_iterations;
-      r.detect += st.t_detect;
-      r.assemble += st.t_assemble;
-      r.solve += st.t_solve;
-      r.check += st.t_check;
-      r.update += st.t_update;
-      r.total += st.t_total;
+      r.detect += st.profile[Stage::DetectContacts];
+      r.assemble += st.profile[Stage::Assemble];
+      r.solve += st.profile[Stage::Solve];
+      r.check += st.profile[Stage::CheckContacts];
+      r.update += st.profile[Stage::Update];
+      r.total += st.profile.total;
       r.contacts = st.contacts;
       if (std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count() > budget && r.steps >= 3) break;
     }
@@ -161,7 +113,7 @@ void solver_table(const std::vector<std::string>& scenes, int steps) {
     World w;
     w = test::brick_wall(std::atoi(scene.c_str() + 4));
     w.controls().threads = 1;
-    w.controls().preconditioner = Preconditioning::Multigrid;
+    w.controls().solver.pcg.preconditioner = Preconditioning::Multigrid;
     // At least `steps` steps, then on until a step ran at the full Δt = g1
     // (early steps may have been cut while the wall settles).
     for (int s = 0; s < steps || (s < steps + 6 && w.last_stats().dt < w.controls().g1); ++s) w.step();
@@ -253,7 +205,7 @@ std::vector<std::string> split(const std::string& s) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  std::vector<std::string> scenes{"wall10", "wall20", "wall40", "bar"};
+  std::vector<std::string> scenes{"wall10", "wall20", "wall40"};
   bool solver = true, steps_table = true;
   std::vector<int> threads{1, 2};
   std::vector<std::string> pres{"auto"};
@@ -290,15 +242,15 @@ int main(int argc, char** argv) {
       solver = false;
     } else {
       std::fprintf(stderr,
-                   "usage: bench_engine [--scenes wall10,wall20,wall40,bar] [--threads 1,2]\n"
+                   "usage: bench_engine [--scenes wall10,wall20,wall40] [--threads 1,2]\n"
                    "                    [--pre auto,bj,mg] [--warmup 2] [--steps 30] [--budget 6] [--csv file]\n"
                    "                    [--solver-only | --no-solver]\n");
       return 2;
     }
   }
   for (const auto& s : scenes)
-    if (s != "bar" && (s.rfind("wall", 0) != 0 || std::atoi(s.c_str() + 4) < 1)) {
-      std::fprintf(stderr, "unknown scene '%s' (wallN or bar)\n", s.c_str());
+    if (s.rfind("wall", 0) != 0 || std::atoi(s.c_str() + 4) < 1) {
+      std::fprintf(stderr, "unknown scene '%s' (wallN)\n", s.c_str());
       return 2;
     }
 

@@ -243,7 +243,7 @@ int edit_distance(std::string_view a, std::string_view b) {
 
 // ---- option tables ---------------------------------------------------------------
 
-Options::Options(lua_State* L, int idx, std::string call, std::initializer_list<const char*> known, bool allow_array)
+Options::Options(lua_State* L, int idx, std::string call, std::span<const char* const> known, bool allow_array)
     : L_(L), idx_(lua_absindex(L, idx)), call_(std::move(call)) {
   if (lua_type(L, idx_) != LUA_TTABLE) fail(call_, ": expected a table of options {...}, got ", type_of(L, idx_));
   const auto n = lua_rawlen(L, idx_);

@@ -14,6 +14,7 @@
 
 #include <array>
 #include <initializer_list>
+#include <span>
 #include <stdexcept>
 #include <string>
 #include <string_view>
@@ -108,7 +109,9 @@ double require_non_negative(double v, std::string_view call, std::string_view wh
 // Values are read with raw access (no metamethods run).
 class Options {
  public:
-  Options(lua_State* L, int idx, std::string call, std::initializer_list<const char*> known, bool allow_array = false);
+  Options(lua_State* L, int idx, std::string call, std::span<const char* const> known, bool allow_array = false);
+  Options(lua_State* L, int idx, std::string call, std::initializer_list<const char*> known, bool allow_array = false)
+      : Options(L, idx, std::move(call), std::span<const char* const>(known.begin(), known.size()), allow_array) {}
 
   lua_State* state() const { return L_; }
   int index() const { return idx_; }

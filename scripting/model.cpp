@@ -64,13 +64,13 @@ void ScriptModel::close() {
 void ScriptModel::set_domain(std::vector<Vec2> polygon, int rock, int joint) {
   cut_.domain = std::move(polygon);
   cut_.default_rock_material = rock;
-  domain_joint_ = joint;
+  boundary_joints_.domain = joint;
   has_domain_ = true;
 }
 
 int ScriptModel::add_hole(std::vector<Vec2> polygon, int joint) {
   cut_.holes.push_back(std::move(polygon));
-  hole_joint_.push_back(joint);
+  boundary_joints_.holes.push_back(joint);
   return static_cast<int>(cut_.holes.size()) - 1;
 }
 
@@ -78,59 +78,7 @@ std::vector<BlockId> ScriptModel::generate() {
   const geometry::BlockSet set = geometry::cut_blocks(cut_);
   cut_stats_ = set.stats;
   generated_ = true;  // even if adding a block fails below: the World cannot take blocks back
-  std::vector<BlockId> ids;
-  ids.reserve(set.blocks.size());
-  for (const geometry::CutBlock& cb : set.blocks) {
-    std::vector<int> joints(cb.edges.size());
-    std::vector<EdgeTag> tags(cb.edges.size());
-    for (std::size_t k = 0; k < cb.edges.size(); ++k) {
-      const geometry::EdgeTag& t = cb.edges[k];
-      switch (t.kind) {
-        case geometry::EdgeKind::Joint:
-          joints[k] = std::max(0, t.joint_material);
-          tags[k] = {EdgeKind::Joint, -1};
-          break;
-        case geometry::EdgeKind::DomainBoundary:
-          joints[k] = domain_joint_;
-          tags[k] = {EdgeKind::Domain, -1};
-          break;
-        case geometry::EdgeKind::HoleBoundary:
-          joints[k] = t.hole >= 0 && t.hole < static_cast<int>(hole_joint_.size()) ? hole_joint_[t.hole] : 0;
-          tags[k] = {EdgeKind::Hole, t.hole};
-          break;
-      }
-    }
-    ids.push_back(add_block(cb.vertices, cb.rock_material, std::move(joints), std::move(tags)));
-  }
-  return ids;
-}
-
-BlockId ScriptModel::add_block(std::vector<Vec2> vertices, int rock, std::vector<int> edge_joints,
-                               std::vector<EdgeTag> tags) {
-  const std::vector<Vec2> given = vertices;
-  const BlockId id = world_->add_block(std::move(vertices), rock, std::move(edge_joints));
-  // The World may store the outline reversed: map each stored edge back to
-  // the edge given, by its end points.
-  const auto stored = world_->block_vertices(id);
-  const std::size_t n = stored.size();
-  std::vector<EdgeTag> mapped(n);
-  if (!tags.empty()) {
-    for (std::size_t k = 0; k < n; ++k) {
-      const Vec2& a = stored[k];
-      const Vec2& b = stored[(k + 1) % n];
-      for (std::size_t j = 0; j < given.size(); ++j) {
-        const Vec2& c = given[j];
-        const Vec2& d = given[(j + 1) % given.size()];
-        if ((a == c && b == d) || (a == d && b == c)) {
-          mapped[k] = tags[j];
-          break;
-        }
-      }
-    }
-  }
-  if (static_cast<std::size_t>(id) >= tags_.size()) tags_.resize(id + 1);
-  tags_[id] = std::move(mapped);
-  return id;
+  return add_cut_blocks(*world_, set, boundary_joints_);
 }
 
 std::optional<BlockId> ScriptModel::block_at(const Vec2& p) const {
@@ -343,7 +291,7 @@ void ScriptModel::record(Monitor& m) {
 
 double ScriptModel::load_time() const {
   // The World takes Δt = min(current Δt, g1), g1 from the controls or
-  // estimated from Eqs. 1–3 (see World::resolve_controls).
+  // estimated from Eqs. 1–3 (see Stepper::derive_automatic_controls).
   const World& w = *world_;
   double g1 = w.controls().g1;
   if (!(g1 > 0)) g1 = w.suggested_time_step();

@@ -18,24 +18,10 @@
 
 #include "geometry/cutting.hpp"
 #include "lua_support.hpp"
+#include "world/cut_blocks.hpp"
 #include "world/world.hpp"
 
 namespace dda::script {
-
-// What a block edge was made from.
-enum class EdgeKind : std::uint8_t {
-  Joint,   // a joint (between two generated blocks)
-  Domain,  // the outer boundary of the domain
-  Hole,    // the boundary of hole `hole`
-  Free,    // an edge of a block added explicitly
-};
-struct EdgeTag {
-  EdgeKind kind = EdgeKind::Free;
-  int hole = -1;  // 0-based hole index for EdgeKind::Hole
-};
-
-// Edge `edge` (vertex edge → edge+1, counter-clockwise) of block `block`.
-using EdgeRef = dda::EdgeRef;
 
 // ---- Monitors -------------------------------------------------------------
 enum class Field : std::uint8_t { Sxx, Syy, Txy, Vx, Vy, Ux, Uy, X, Y };
@@ -147,13 +133,16 @@ class ScriptModel {
   int add_hole(std::vector<Vec2> polygon, int joint);  // 0-based hole index
   int hole_count() const { return static_cast<int>(cut_.holes.size()); }
   bool generated() const { return generated_; }
-  // Cuts the domain and adds every block to the World. Returns the new ids.
+  // Cuts the domain and adds every block to the World (add_cut_blocks).
+  // Returns the new ids.
   std::vector<BlockId> generate();
   const geometry::CutStats& cut_stats() const { return cut_stats_; }
 
   // An explicit block; edge_joints as World::add_block.
-  BlockId add_block(std::vector<Vec2> vertices, int rock, std::vector<int> edge_joints, std::vector<EdgeTag> tags = {});
-  const EdgeTag& edge_tag(EdgeRef e) const { return tags_[e.block][e.edge]; }
+  BlockId add_block(std::vector<Vec2> vertices, int rock, std::vector<int> edge_joints) {
+    return world_->add_block(std::move(vertices), rock, std::move(edge_joints));
+  }
+  const EdgeTag& edge_tag(EdgeRef e) const { return world_->block_edge_tag(e.block, e.edge); }
 
   // ---- queries on the current geometry ------------------------------------
   std::optional<BlockId> block_at(const Vec2& p) const;
@@ -218,10 +207,8 @@ class ScriptModel {
   geometry::CutInput cut_;
   bool has_domain_ = false;
   bool generated_ = false;
-  int domain_joint_ = 0;
-  std::vector<int> hole_joint_;
+  BoundaryJoints boundary_joints_;
   geometry::CutStats cut_stats_;
-  std::vector<std::vector<EdgeTag>> tags_;  // per block, per stored edge
   std::vector<ScriptPointLoad> loads_;
   std::vector<ScriptPressure> pressures_;
   std::vector<ScriptTarget> targets_;

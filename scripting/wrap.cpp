@@ -325,12 +325,9 @@ void push_stats(lua_State* L, const StepStats& s) {
   lua_pushboolean(L, s.contacts_searched);
   lua_setfield(L, -2, "contacts_searched");
   num("max_displacement_ratio", s.max_displacement_ratio);
-  num("t_detect", s.t_detect);
-  num("t_assemble", s.t_assemble);
-  num("t_solve", s.t_solve);
-  num("t_check", s.t_check);
-  num("t_update", s.t_update);
-  num("t_total", s.t_total);
+  // Seconds per stage of the step (Stage, world/step_profile.hpp): t_detect, ...
+  for (int k = 0; k < kStageCount; ++k) num(("t_" + std::string(kStageKeys[k])).c_str(), s.profile.seconds[k]);
+  num("t_total", s.profile.total);
 }
 
 }  // namespace dda::script

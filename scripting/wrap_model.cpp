@@ -14,123 +14,80 @@ namespace dda::script {
 
 // ---- controls -----------------------------------------------------------------------------
 
-#define DDA_CONTROL_KEYS                                                                                         \
-  "plane", "g0", "g1", "g2", "gg", "shear_ratio", "open_close_limit", "contact_tolerance", "contact_range",      \
-      "fixed_point_factor", "gravity", "cut_factor", "max_step_cuts", "cg_tolerance", "cg_open_close_tolerance", \
-      "cg_static_tolerance", "predict_states", "patch_hops", "jacobi_refresh_tolerance", "preconditioner",       \
-      "cg_max_iterations", "threads"
+// Read, written and checked through the engine's table of controls
+// (world/controls.hpp): names, types, checks and their messages come from
+// there, so a control added there needs nothing here.
+
+namespace {
+std::span<const char* const> control_names() {
+  static const std::vector<const char*> names = [] {
+    std::vector<const char*> n;
+    for (const ControlSpec& s : control_specs()) n.push_back(s.name);
+    return n;
+  }();
+  return names;
+}
+}  // namespace
 
 void parse_controls(const Options& o, Controls& c) {
   const std::string& call = o.call();
-  if (o.has("plane")) {
-    const std::string p = o.string("plane");
-    if (p == "stress")
-      c.plane = PlaneMode::Stress;
-    else if (p == "strain")
-      c.plane = PlaneMode::Strain;
-    else
-      fail(call, ": option 'plane' must be \"stress\" or \"strain\", got \"", p, "\"");
-  }
-  c.g0 = o.non_negative("g0", c.g0);
-  c.g1 = o.non_negative("g1", c.g1);
-  c.g2 = o.positive("g2", c.g2);
-  if (o.has("gg")) {
-    c.gg = o.number("gg");
-    if (c.gg < 0 || c.gg > 1) fail(call, ": option 'gg' must lie in [0, 1], got ", c.gg);
-  }
-  c.shear_ratio = o.non_negative("shear_ratio", c.shear_ratio);
-  if (o.has("open_close_limit")) {
-    const long n = o.integer("open_close_limit", 0);
-    if (n < 1) fail(call, ": option 'open_close_limit' must be at least 1, got ", n);
-    c.open_close_limit = static_cast<int>(n);
-  }
-  c.contact_tolerance = o.non_negative("contact_tolerance", c.contact_tolerance);
-  c.contact_range = o.non_negative("contact_range", c.contact_range);
-  c.fixed_point_factor = o.positive("fixed_point_factor", c.fixed_point_factor);
-  if (o.has("gravity")) c.gravity = o.point("gravity");
-  if (o.has("cut_factor")) {
-    c.cut_factor = o.number("cut_factor");
-    if (!(c.cut_factor > 0 && c.cut_factor < 1))
-      fail(call, ": option 'cut_factor' must lie in (0, 1), got ", c.cut_factor);
-  }
-  if (o.has("max_step_cuts")) {
-    const long n = o.integer("max_step_cuts", 0);
-    if (n < 0) fail(call, ": option 'max_step_cuts' must be zero or positive, got ", n);
-    c.max_step_cuts = static_cast<int>(n);
-  }
-  c.cg_tolerance = o.positive("cg_tolerance", c.cg_tolerance);
-  c.cg_open_close_tolerance = o.positive("cg_open_close_tolerance", c.cg_open_close_tolerance);
-  c.cg_static_tolerance = o.positive("cg_static_tolerance", c.cg_static_tolerance);
-  c.predict_states = o.boolean("predict_states", c.predict_states);
-  if (o.has("jacobi_refresh_tolerance")) {
-    c.jacobi_refresh_tolerance = o.number("jacobi_refresh_tolerance");
-    if (!(c.jacobi_refresh_tolerance >= 0 && c.jacobi_refresh_tolerance < 1))
-      fail(call, ": option 'jacobi_refresh_tolerance' must lie in [0, 1), got ", c.jacobi_refresh_tolerance);
-  }
-  if (o.has("preconditioner")) {
-    const std::string p = o.string("preconditioner");
-    if (p == "auto")
-      c.preconditioner = Preconditioning::Auto;
-    else if (p == "block_jacobi")
-      c.preconditioner = Preconditioning::BlockJacobi;
-    else if (p == "multigrid")
-      c.preconditioner = Preconditioning::Multigrid;
-    else
-      fail(call, ": option 'preconditioner' must be \"auto\", \"block_jacobi\" or \"multigrid\", got \"", p, "\"");
-  }
-  if (o.has("patch_hops")) {
-    const long n = o.integer("patch_hops", 0);
-    if (n < 0) fail(call, ": option 'patch_hops' must be zero (off) or positive, got ", n);
-    c.patch_hops = static_cast<int>(n);
-  }
-  if (o.has("cg_max_iterations")) {
-    const long n = o.integer("cg_max_iterations", 0);
-    if (n < 0) fail(call, ": option 'cg_max_iterations' must be zero (automatic) or positive, got ", n);
-    c.cg_max_iterations = static_cast<int>(n);
-  }
-  if (o.has("threads")) {
-    const long n = o.integer("threads", 0);
-    if (n < 0) fail(call, ": option 'threads' must be zero (every core) or positive, got ", n);
-    c.threads = static_cast<int>(n);
+  for (const ControlSpec& s : control_specs()) {
+    if (!o.has(s.name)) continue;
+    switch (s.type) {
+      case ControlType::Number:
+        s.number(c) = o.number(s.name);
+        break;
+      case ControlType::Integer: {
+        const long n = o.integer(s.name, 0);
+        if (!s.range.admits(static_cast<double>(n))) fail(call, ": option '", s.name, "' ", s.range.rule, ", got ", n);
+        s.integer(c) = static_cast<int>(n);
+        break;
+      }
+      case ControlType::Flag:
+        s.flag(c) = o.boolean(s.name, s.flag(c));
+        break;
+      case ControlType::Vector:
+        s.vector(c) = o.point(s.name);
+        break;
+      case ControlType::Choice: {
+        const std::string name = o.string(s.name);
+        const int i = s.find_choice(name);
+        if (i < 0) fail(call, ": option '", s.name, "' must be ", s.choice_list(), ", got \"", name, "\"");
+        s.set_choice(c, i);
+        break;
+      }
+    }
+    if (const char* rule = s.violated(c)) fail(call, ": option '", s.name, "' ", rule, ", got ", s.value_text(c));
   }
 }
 
-Options controls_options(lua_State* L, int idx, const char* call) { return Options(L, idx, call, {DDA_CONTROL_KEYS}); }
+Options controls_options(lua_State* L, int idx, const char* call) { return Options(L, idx, call, control_names()); }
 
 namespace {
 
-void push_controls(lua_State* L, const Controls& c) {
-  lua_createtable(L, 0, 16);
-  lua_pushstring(L, c.plane == PlaneMode::Stress ? "stress" : "strain");
-  lua_setfield(L, -2, "plane");
-  auto num = [&](const char* k, double v) { set_number_field(L, k, v); };
-  auto integer = [&](const char* k, long v) { set_integer_field(L, k, v); };
-  num("g0", c.g0);
-  num("g1", c.g1);
-  num("g2", c.g2);
-  num("gg", c.gg);
-  num("shear_ratio", c.shear_ratio);
-  integer("open_close_limit", c.open_close_limit);
-  num("contact_tolerance", c.contact_tolerance);
-  num("contact_range", c.contact_range);
-  num("fixed_point_factor", c.fixed_point_factor);
-  push_point(L, c.gravity);
-  lua_setfield(L, -2, "gravity");
-  num("cut_factor", c.cut_factor);
-  integer("max_step_cuts", c.max_step_cuts);
-  num("cg_tolerance", c.cg_tolerance);
-  num("cg_open_close_tolerance", c.cg_open_close_tolerance);
-  num("cg_static_tolerance", c.cg_static_tolerance);
-  num("jacobi_refresh_tolerance", c.jacobi_refresh_tolerance);
-  lua_pushboolean(L, c.predict_states);
-  lua_setfield(L, -2, "predict_states");
-  lua_pushstring(L, c.preconditioner == Preconditioning::Auto          ? "auto"
-                    : c.preconditioner == Preconditioning::BlockJacobi ? "block_jacobi"
-                                                                       : "multigrid");
-  lua_setfield(L, -2, "preconditioner");
-  integer("cg_max_iterations", c.cg_max_iterations);
-  integer("patch_hops", c.patch_hops);
-  integer("threads", c.threads);
+void push_controls(lua_State* L, const Controls& current) {
+  Controls c = current;  // the table's accessors take a writable Controls
+  lua_createtable(L, 0, static_cast<int>(control_specs().size()));
+  for (const ControlSpec& s : control_specs()) {
+    switch (s.type) {
+      case ControlType::Number:
+        set_number_field(L, s.name, s.number(c));
+        continue;
+      case ControlType::Integer:
+        set_integer_field(L, s.name, s.integer(c));
+        continue;
+      case ControlType::Flag:
+        lua_pushboolean(L, s.flag(c));
+        break;
+      case ControlType::Vector:
+        push_point(L, s.vector(c));
+        break;
+      case ControlType::Choice:
+        lua_pushstring(L, s.choices[s.get_choice(c)]);
+        break;
+    }
+    lua_setfield(L, -2, s.name);
+  }
 }
 
 // m:controls{...} sets; m:controls() returns the current controls as a table.

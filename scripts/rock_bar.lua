@@ -1,7 +1,8 @@
 -- rock_bar.lua: a stress wave through the paper's jointed rock bar, Model 1.
 --
 -- Models:  a 20 m x 1 m bar cut by a horizontal and a vertical joint set, both
---          at 0.2 m spacing (500 blocks of 0.2 m x 0.2 m). Rock: density 2000
+--          at 0.2 m spacing (500 blocks of 0.2 m x 0.2 m; scripts/paper/bars.lua,
+--          the bars of every paper script and benchmark). Rock: density 2000
 --          kg/m^3, E = 50 GPa, nu = 0.25 (bar wave speed sqrt(E/rho) = 5000 m/s,
 --          plane stress). Joints: phi = 40 deg, c = 8 MPa, tensile strength 8 MPa.
 --          Controls as the paper's Section 2: g0 = 20 E (or --set g0=1 for E),
@@ -22,6 +23,7 @@
 --          ffmpeg is on the PATH (--set movie= for none).
 
 local dda = require "dda"
+local bars = require "paper.bars"
 
 local E = 50e9                                   -- Pa
 local g0 = dda.param("g0", 20) * E               -- contact spring, in multiples of E
@@ -32,26 +34,21 @@ local amplitude = dda.param("amplitude", 5e6)    -- Pa
 -- m, centre and left_pressure are globals so that `dda console scripts/rock_bar.lua`
 -- can inspect and drive them after the script has run.
 m = dda.model{ plane = "stress", g0 = g0, g1 = 2e-6, g2 = 0.005, gg = 1 }
-local rock = m:rock{ density = 2000, E = E, nu = 0.25 }
+local rock = m:rock(bars.rock)                   -- density 2000, E = 50 GPa, nu = 0.25
 local joint = m:joint{ friction = 40, cohesion = 8e6, tension = 8e6 }
-
-m:domain{ box = {0, 0, 20, 1}, rock = rock }
-m:joint_set{ dip = 0, spacing = 0.2, joint = joint }    -- horizontal joints
-m:joint_set{ dip = 90, spacing = 0.2, joint = joint }   -- vertical joints
-local blocks = m:generate()
+local blocks = bars.build(m, 1, rock, joint)     -- horizontal and vertical joints
 print(string.format("rock bar Model 1: %d blocks, g0 = %g E, dt <= %g s", #blocks, g0 / E, 2e-6))
 
 -- Loads and boundaries.
 local half_period = 0.5 / frequency
-local left = m:edges{ on_segment = {0, 0, 0, 1} }
+local left = bars.left_end(m)
 left_pressure = left:pressure(function(t)
   if t < half_period then return amplitude * math.sin(2 * math.pi * frequency * t) end
   return 0
 end)
-local right = m:edges{ on_segment = {20, 0, 20, 1} }
-right:fix()
+bars.right_end(m, 1):fix()
 
-centre = m:monitor{ name = "rock_bar_centre", at = {10.1, 0.5}, fields = {"sxx", "vx"} }
+centre = m:monitor{ name = "rock_bar_centre", at = bars.centre, fields = {"sxx", "vx"} }
 
 -- Frames of sigma_xx every `frame_every` steps (0: none), when the renderer is
 -- built, and a movie of them when ffmpeg is on the PATH (a warning otherwise).

@@ -73,10 +73,12 @@ class ContactOperator final : public LinearOperator {
     for (const int c : row_contacts(i)) out.push_back(other_block(c, i));
     return true;
   }
-  // Assembled on the first call after assembled(): one block per pair of
-  // blocks in the contact list (open contacts included, so that the pattern
-  // holds for all the open-close iterations of a step).
-  const BlockSparseMatrix& stored() const override;
+  // The entries as a stored matrix, assembled on the first call after
+  // assembled(): one block per pair of blocks in the contact list (open
+  // contacts included, so that the pattern holds for all the open-close
+  // iterations of a step).
+  const BlockSparseMatrix& stored() const;
+  const BlockSparseMatrix* stored_matrix() const override { return &stored(); }
 
  private:
   // Upper triangles (21 numbers, not 36): the mat-vec of wave problems on

@@ -199,12 +199,12 @@ struct SegmentList {
 // then explicit joint lines, then automatic inner cuts, then sets in order.
 SegmentList collect_segments(const CutInput& in, const Prepared& p, const std::vector<JointLine>& inner_cuts) {
   SegmentList list;
-  const EdgeTag domain_tag{EdgeKind::DomainBoundary, -1, -1};
+  const EdgeTag domain_tag{EdgeKind::Domain, -1, -1};
   for (std::size_t k = 0; k < p.domain.size(); ++k)  // counter-clockwise: rock on the left
     list.add(p.domain[k], p.domain[(k + 1) % p.domain.size()], kBoundaryRank, kCornerRank, domain_tag, true);
   for (std::size_t h = 0; h < p.holes.size(); ++h) {
     const auto& hole = p.holes[h];
-    const EdgeTag hole_tag{EdgeKind::HoleBoundary, -1, static_cast<int>(h)};
+    const EdgeTag hole_tag{EdgeKind::Hole, -1, static_cast<int>(h)};
     for (std::size_t k = 0; k < hole.size(); ++k)  // walked clockwise, so the rock is on the left
       list.add(hole[(k + 1) % hole.size()], hole[k], kBoundaryRank, kCornerRank, hole_tag, true);
   }
@@ -485,7 +485,7 @@ std::vector<JointLine> inner_loop_cuts(const PlanarGraph& g, const CutInput& in)
   std::vector<JointLine> cuts;
   auto hole_of = [&](const std::vector<int>& half_edges) {
     for (int h : half_edges)
-      if (g.tag(h >> 1).kind == EdgeKind::HoleBoundary) return g.tag(h >> 1).hole;
+      if (g.tag(h >> 1).kind == EdgeKind::Hole) return g.tag(h >> 1).hole;
     return -1;
   };
   auto refuse = [&](int hole, const Vec2& where, bool pinched) {
@@ -935,7 +935,7 @@ std::vector<EdgeRef> BlockSet::domain_boundary_edges() const {
   std::vector<EdgeRef> found;
   for (int bl = 0; bl < static_cast<int>(blocks.size()); ++bl)
     for (int k = 0; k < static_cast<int>(blocks[bl].edges.size()); ++k)
-      if (blocks[bl].edges[k].kind == EdgeKind::DomainBoundary) found.push_back({bl, k});
+      if (blocks[bl].edges[k].kind == EdgeKind::Domain) found.push_back({bl, k});
   return found;
 }
 
@@ -946,7 +946,7 @@ std::vector<EdgeRef> BlockSet::hole_boundary_edges(int hole) const {
   for (int bl = 0; bl < static_cast<int>(blocks.size()); ++bl)
     for (int k = 0; k < static_cast<int>(blocks[bl].edges.size()); ++k) {
       const EdgeTag& t = blocks[bl].edges[k];
-      if (t.kind == EdgeKind::HoleBoundary && t.hole == hole) found.push_back({bl, k});
+      if (t.kind == EdgeKind::Hole && t.hole == hole) found.push_back({bl, k});
     }
   return found;
 }

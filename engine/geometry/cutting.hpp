@@ -19,6 +19,7 @@
 #include <vector>
 
 #include "core/types.hpp"
+#include "geometry/edge.hpp"
 
 namespace dda::geometry {
 
@@ -97,16 +98,6 @@ struct CutInput {
   int inner_cut_material = -1;
 };
 
-enum class EdgeKind { Joint, DomainBoundary, HoleBoundary };
-
-struct EdgeTag {
-  EdgeKind kind = EdgeKind::Joint;
-  int joint_material = -1;  // for Joint edges, else -1
-  int hole = -1;            // 0-based hole index for HoleBoundary edges, else -1
-
-  friend bool operator==(const EdgeTag&, const EdgeTag&) = default;
-};
-
 struct CutBlock {
   // Counter-clockwise; only true corners (where the outline goes straight on
   // and the edge tag does not change, the vertex is left out). A neighbour's
@@ -116,12 +107,6 @@ struct CutBlock {
   int rock_material = 0;
   double area = 0;
   Vec2 centroid = Vec2::Zero();
-};
-
-struct EdgeRef {
-  int block = -1;
-  int edge = -1;
-  friend bool operator==(const EdgeRef&, const EdgeRef&) = default;
 };
 
 // Figures from one cut, for benchmarks and diagnostics.

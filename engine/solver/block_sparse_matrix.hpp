@@ -45,7 +45,7 @@ class BlockSparseMatrix final : public LinearOperator {
       if (cols_[k] != i) out.push_back(cols_[k]);
     return true;
   }
-  const BlockSparseMatrix& stored() const override { return *this; }
+  const BlockSparseMatrix* stored_matrix() const override { return this; }
 
   // Scalar sparse copy (test oracle and debugging only; not used in the step).
   Eigen::SparseMatrix<double> to_sparse() const;

@@ -2,7 +2,8 @@
 // The system matrix as the solvers see it: symmetric, in block rows of 6
 // (one per rock block), with its diagonal blocks and the product y = A·x by
 // ranges of block rows. Either stored (BlockSparseMatrix) or matrix-free
-// (the contact springs, assembly/contact_operator.hpp).
+// (the contact springs, assembly/contact_operator.hpp); a stored matrix is a
+// capability an operator may offer, not a duty (stored_matrix()).
 #include <cstdint>
 #include <vector>
 
@@ -29,9 +30,11 @@ class LinearOperator {
   // Appends the block rows that row i couples to (its off-diagonal blocks)
   // to `out` and returns true; an operator that cannot say returns false.
   virtual bool append_neighbours(int /*i*/, std::vector<int>& /*out*/) const { return false; }
-  // The operator as a stored matrix, for what needs its entries (multigrid's
-  // Galerkin products, the direct test solver). May assemble it on the call.
-  virtual const BlockSparseMatrix& stored() const = 0;
+  // Capability: the operator's entries as a stored matrix, for what needs
+  // them (multigrid's Galerkin products, a direct factorisation). An operator
+  // that is matrix-free only answers nullptr (the default); one that can
+  // assemble its entries may do so on the call.
+  virtual const BlockSparseMatrix* stored_matrix() const { return nullptr; }
 };
 
 }  // namespace dda

@@ -52,7 +52,10 @@ const BlockSparseMatrix& Multigrid::op(std::size_t level) const { return level =
 
 void Multigrid::setup(const LinearOperator& op) {
   // The Galerkin products need the fine matrix's entries.
-  const BlockSparseMatrix& a = op.stored();
+  const BlockSparseMatrix* stored = op.stored_matrix();
+  if (!stored)
+    throw Error("the multigrid preconditioner needs the operator's entries, and this operator is matrix-free only");
+  const BlockSparseMatrix& a = *stored;
   fine_ = &a;
   const auto rows = a.row_starts(), cols = a.columns();
   const bool same_pattern = !levels_.empty() &&

@@ -56,6 +56,7 @@
 #include <span>
 #include <vector>
 
+#include "solver/block_sparse_matrix.hpp"
 #include "solver/linear_solver.hpp"
 
 namespace dda {

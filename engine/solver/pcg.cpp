@@ -1,5 +1,5 @@
-#include <Eigen/Cholesky>
-#include <Eigen/SparseCholesky>
+#include "solver/pcg.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -7,52 +7,9 @@
 
 #include "core/error.hpp"
 #include "core/parallel.hpp"
-#include "solver/linear_solver.hpp"
+#include "solver/preconditioner_choice.hpp"
 
 namespace dda {
-
-double deterministic_dot(const VecX& a, const VecX& b) {
-  const std::size_t blocks = static_cast<std::size_t>(a.size()) / 6;
-  return deterministic_sum<double>(blocks, [&](std::size_t i) { return a.segment<6>(6 * i).dot(b.segment<6>(6 * i)); });
-}
-
-bool invert_spd6(const Mat6& a, Mat6& inverse) {
-  // a = L·Lᵀ (lower triangle of a), then L⁻¹ by forward substitution, then a⁻¹ = L⁻ᵀ·L⁻¹.
-  double l[6][6] = {}, li[6][6] = {};
-  for (int j = 0; j < 6; ++j) {
-    double d = a(j, j);
-    for (int k = 0; k < j; ++k) d -= l[j][k] * l[j][k];
-    if (!(d > 0) || !std::isfinite(d)) {
-      // Not positive definite (should not happen: every block has inertia).
-      // Fall back to the diagonal so the solve can still report what happened.
-      inverse.setZero();
-      for (int k = 0; k < 6; ++k) inverse(k, k) = a(k, k) > 0 ? 1.0 / a(k, k) : 1.0;
-      return false;
-    }
-    l[j][j] = std::sqrt(d);
-    for (int i = j + 1; i < 6; ++i) {
-      double s = a(i, j);
-      for (int k = 0; k < j; ++k) s -= l[i][k] * l[j][k];
-      l[i][j] = s / l[j][j];
-    }
-  }
-  for (int j = 0; j < 6; ++j) {
-    li[j][j] = 1.0 / l[j][j];
-    for (int i = j + 1; i < 6; ++i) {
-      double s = 0;
-      for (int k = j; k < i; ++k) s -= l[i][k] * li[k][j];
-      li[i][j] = s / l[i][i];
-    }
-  }
-  for (int i = 0; i < 6; ++i)
-    for (int j = 0; j <= i; ++j) {
-      double s = 0;
-      for (int k = i; k < 6; ++k) s += li[k][i] * li[k][j];
-      inverse(i, j) = s;
-      inverse(j, i) = s;
-    }
-  return true;
-}
 
 namespace {
 // Whether the preconditioner block made from `basis` still serves for `now`:
@@ -110,6 +67,25 @@ void BlockJacobi::apply_rows(std::size_t begin, std::size_t end, const VecX& r, 
 }
 
 PcgSolver::PcgSolver(std::unique_ptr<Preconditioner> pre) : pre_(std::move(pre)) {}
+
+void PcgSolver::begin_step(const SolverSettings& settings, const StepSolveInfo& info) {
+  // Auto switches on the last step's CG iterations per solve, which are the
+  // same for any thread count, so the choice stays deterministic. The
+  // preconditioner is rebuilt only when the choice changes.
+  SystemTraits traits(info.blocks);
+  if (kind_ && info.last_step_solves > 0) {
+    traits.last_kind = *kind_;
+    traits.last_cg_per_solve = static_cast<double>(info.last_step_iterations) / info.last_step_solves;
+  }
+  const Preconditioning kind = choose_preconditioning(settings.pcg.preconditioner, traits);
+  if (!kind_ || *kind_ != kind) {
+    pre_ = make_preconditioner(kind);
+    kind_ = kind;
+  }
+  pre_->configure(settings.pcg);
+  pre_->set_block_centroids(info.block_centroids);
+  patch_hops = info.local_resolves ? settings.pcg.patch_hops : 0;
+}
 
 void PcgSolver::set_operator(const LinearOperator& a) {
   a_ = &a;
@@ -413,21 +389,6 @@ double PcgSolver::solve_on_patch(VecX& x, double bnorm, SolveReport& report) {
   return chunked_sum(n / 6, [&](std::size_t begin, std::size_t end) {
     return r_.segment(6 * begin, 6 * (end - begin)).squaredNorm();
   });
-}
-
-SolveReport DirectSolver::solve(const VecX& b, VecX& x) {
-  DDA_ASSERT(a_ != nullptr, "DirectSolver::solve before set_operator");
-  SolveReport report;
-  Eigen::SparseMatrix<double> a = a_->to_sparse();
-  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> ldlt(a);
-  if (ldlt.info() != Eigen::Success) return report;
-  x = ldlt.solve(b);
-  report.finite = x.allFinite();
-  report.converged = report.finite;
-  const double bn = b.norm();
-  report.relative_residual = bn > 0 ? (b - a * x).norm() / bn : 0;
-  report.iterations = 1;
-  return report;
 }
 
 }  // namespace dda

@@ -1,17 +1,14 @@
 #include "solver/preconditioner_choice.hpp"
 
-#include "core/error.hpp"
 #include "solver/multigrid.hpp"
-#include "world/world.hpp"
+#include "solver/pcg.hpp"
 
 namespace dda {
 
 Preconditioning choose_preconditioning(Preconditioning requested, const SystemTraits& traits) {
   if (requested != Preconditioning::Auto) return requested;
   if (traits.blocks < kMultigridMinBlocks) return Preconditioning::BlockJacobi;
-  if (!traits.last_kind || *traits.last_kind == Preconditioning::Auto)
-    return traits.stiffness_to_inertia >= kStiffnessToInertiaForMultigrid ? Preconditioning::Multigrid
-                                                                          : Preconditioning::BlockJacobi;
+  if (!traits.last_kind || *traits.last_kind == Preconditioning::Auto) return Preconditioning::BlockJacobi;
   if (*traits.last_kind == Preconditioning::BlockJacobi)
     return traits.last_cg_per_solve > kToMultigrid ? Preconditioning::Multigrid : Preconditioning::BlockJacobi;
   return traits.last_cg_per_solve < kToBlockJacobi ? Preconditioning::BlockJacobi : Preconditioning::Multigrid;

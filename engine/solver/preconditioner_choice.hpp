@@ -1,13 +1,14 @@
 #pragma once
-// Which preconditioner a World's PCG uses, decided once per step.
+// Which preconditioner the PCG uses, decided once per step
+// (PcgSolver::begin_step).
 //
 // Auto is adaptive and deterministic: it looks only at iteration counts of
 // earlier steps, which are the same for any thread count (PCG's reductions
 // are fixed-order), so the choice — and with it every result bit — does not
 // depend on the threads either.
 //
-//   * Small models (fewer than kMultigridMinBlocks blocks) and the first step
-//     without a hint: block-Jacobi.
+//   * Small models (fewer than kMultigridMinBlocks blocks) and the first
+//     step: block-Jacobi.
 //   * Block-Jacobi whose last step needed more than kToMultigrid (1000) CG
 //     iterations per solve (contacts and elasticity dominate the inertia:
 //     quasi-static walls, slopes): multigrid from the next step on.
@@ -16,28 +17,20 @@
 //     block-Jacobi. The gap between the two thresholds (multigrid takes
 //     about 4–5 times fewer iterations than block-Jacobi on walls) keeps the
 //     choice from flip-flopping.
-//   * A first step with stiffness_to_inertia given: multigrid when it is at
-//     least kStiffnessToInertiaForMultigrid.
 #include <memory>
 #include <optional>
 
 #include "solver/linear_solver.hpp"
+#include "solver/solver_settings.hpp"
 
 namespace dda {
-
-enum class Preconditioning;
 
 // Facts about the system that decide Preconditioning::Auto.
 struct SystemTraits {
   SystemTraits() = default;
-  SystemTraits(int blocks_, double stiffness_to_inertia_ = 0)
-      : blocks(blocks_), stiffness_to_inertia(stiffness_to_inertia_) {}
+  explicit SystemTraits(int blocks_) : blocks(blocks_) {}
 
   int blocks = 0;
-  // Largest ratio, over blocks, of contact + elastic stiffness to the inertia
-  // term 2m/Δt² (0 when unknown): small for waves (inertia-dominated), large
-  // for quasi-static problems. Only used before any step has been solved.
-  double stiffness_to_inertia = 0;
   // The last solved step: the preconditioner it used and its CG iterations
   // per solve (StepStats::cg_iterations / open_close_iterations). Empty
   // before the first step.
@@ -55,7 +48,6 @@ inline constexpr int kMultigridMinBlocks = 64;
 // block-Jacobi takes over a thousand iterations for.
 inline constexpr double kToMultigrid = 1000;  // block-Jacobi CG iterations per solve
 inline constexpr double kToBlockJacobi = 30;  // multigrid CG iterations per solve
-inline constexpr double kStiffnessToInertiaForMultigrid = 50;
 
 // The kind to use for these traits (Auto resolved; others returned as given).
 Preconditioning choose_preconditioning(Preconditioning requested, const SystemTraits& traits);

@@ -1,55 +1,48 @@
 #include "world/world.hpp"
 
-#include <tbb/task_arena.h>
-
 #include <algorithm>
-#include <chrono>
 #include <cmath>
-#include <cstring>
 
 #include "block/displacement.hpp"
-#include "contact/broad_phase.hpp"
-#include "contact/contact_law.hpp"
-#include "contact/narrow_phase.hpp"
 #include "core/error.hpp"
-#include "core/parallel.hpp"
 #include "geometry/polygon.hpp"
-#include "solver/linear_solver.hpp"
-#include "world/world_impl.hpp"
+#include "world/stepper.hpp"
 
 namespace dda {
 
 World::World() : World(Controls{}) {}
-World::World(const Controls& controls) : controls_(controls), impl_(std::make_unique<Impl>()) {
-  joints_.push_back(JointMaterial{});
-  vertex_start_.push_back(0);
+World::World(const Controls& controls) : stepper_(std::make_unique<Stepper>()) {
+  s_.controls = controls;
+  s_.joints.push_back(JointMaterial{});
 }
 World::~World() = default;
 World::World(World&&) noexcept = default;
 World& World::operator=(World&&) noexcept = default;
 
+StepStats World::step() { return stepper_->step(s_); }
+
 // ---- Model building ---------------------------------------------------------
 
 int World::add_rock_material(const RockMaterial& m) {
-  validate(m, static_cast<int>(rocks_.size()));
-  rocks_.push_back(m);
-  return static_cast<int>(rocks_.size()) - 1;
+  validate(m, static_cast<int>(s_.rocks.size()));
+  s_.rocks.push_back(m);
+  return static_cast<int>(s_.rocks.size()) - 1;
 }
 
 int World::add_joint_material(const JointMaterial& m) {
-  validate(m, static_cast<int>(joints_.size()));
-  joints_.push_back(m);
-  return static_cast<int>(joints_.size()) - 1;
+  validate(m, static_cast<int>(s_.joints.size()));
+  s_.joints.push_back(m);
+  return static_cast<int>(s_.joints.size()) - 1;
 }
 
 RockMaterial& World::rock_material(int id) {
   if (id < 0 || id >= rock_material_count()) throw Error(msg("no rock material ", id));
-  return rocks_[id];
+  return s_.rocks[id];
 }
 
 JointMaterial& World::joint_material(int id) {
   if (id < 0 || id >= joint_material_count()) throw Error(msg("no joint material ", id));
-  return joints_[id];
+  return s_.joints[id];
 }
 
 BlockId World::check(BlockId b) const {
@@ -57,7 +50,8 @@ BlockId World::check(BlockId b) const {
   return b;
 }
 
-BlockId World::add_block(std::vector<Vec2> vertices, int rock_material, std::vector<int> edge_joints) {
+BlockId World::add_block(std::vector<Vec2> vertices, int rock_material, std::vector<int> edge_joints,
+                         std::vector<EdgeTag> edge_tags) {
   const BlockId id = static_cast<BlockId>(block_count());
   const std::string what = msg("block ", id);
   validate_simple_polygon(vertices, what);
@@ -68,139 +62,152 @@ BlockId World::add_block(std::vector<Vec2> vertices, int rock_material, std::vec
     throw Error(msg(what, ": ", edge_joints.size(), " edge joints given for ", vertices.size(), " edges"));
   for (int j : edge_joints)
     if (j < 0 || j >= joint_material_count()) throw Error(msg(what, ": unknown joint material ", j));
+  if (edge_tags.empty()) edge_tags.assign(vertices.size(), EdgeTag{});
+  if (edge_tags.size() != vertices.size())
+    throw Error(msg(what, ": ", edge_tags.size(), " edge tags given for ", vertices.size(), " edges"));
   if (signed_area(vertices) < 0) {
     // Store counter-clockwise. Edge k (k → k+1) becomes edge n-2-k of the
     // reversed outline (indices mod n).
     const int n = static_cast<int>(vertices.size());
     std::reverse(vertices.begin(), vertices.end());
-    std::vector<int> reversed(n);
-    for (int k = 0; k < n; ++k) reversed[((n - 2 - k) % n + n) % n] = edge_joints[k];
-    edge_joints = std::move(reversed);
+    auto reverse_edges = [n](auto& per_edge) {
+      auto reversed = per_edge;
+      for (int k = 0; k < n; ++k) reversed[((n - 2 - k) % n + n) % n] = per_edge[k];
+      per_edge = std::move(reversed);
+    };
+    reverse_edges(edge_joints);
+    reverse_edges(edge_tags);
   }
+  Blocks& bl = s_.blocks;
   const PolygonMoments m = polygon_moments(vertices);
-  vertices_.insert(vertices_.end(), vertices.begin(), vertices.end());
-  initial_vertices_.insert(initial_vertices_.end(), vertices.begin(), vertices.end());
-  edge_joint_.insert(edge_joint_.end(), edge_joints.begin(), edge_joints.end());
-  vertex_start_.push_back(static_cast<int>(vertices_.size()));
-  centroid_.push_back(m.centroid);
-  initial_centroid_.push_back(m.centroid);
-  area_.push_back(m.area);
-  sxx_.push_back(m.sxx);
-  syy_.push_back(m.syy);
-  sxy_.push_back(m.sxy);
-  mass_.push_back(rocks_[rock_material].density * m.area);
-  material_.push_back(rock_material);
-  stress_.push_back(Vec3::Zero());
-  velocity_.push_back(Vec6::Zero());
-  last_displacement_.push_back(Vec6::Zero());
-  prepared_ = false;
+  bl.vertices.insert(bl.vertices.end(), vertices.begin(), vertices.end());
+  bl.initial_vertices.insert(bl.initial_vertices.end(), vertices.begin(), vertices.end());
+  bl.edge_joint.insert(bl.edge_joint.end(), edge_joints.begin(), edge_joints.end());
+  bl.edge_tag.insert(bl.edge_tag.end(), edge_tags.begin(), edge_tags.end());
+  bl.vertex_start.push_back(static_cast<int>(bl.vertices.size()));
+  bl.centroid.push_back(m.centroid);
+  bl.initial_centroid.push_back(m.centroid);
+  bl.area.push_back(m.area);
+  bl.sxx.push_back(m.sxx);
+  bl.syy.push_back(m.syy);
+  bl.sxy.push_back(m.sxy);
+  bl.mass.push_back(s_.rocks[rock_material].density * m.area);
+  bl.material.push_back(rock_material);
+  bl.stress.push_back(Vec3::Zero());
+  bl.velocity.push_back(Vec6::Zero());
+  bl.last_displacement.push_back(Vec6::Zero());
+  s_.prepared = false;
   return id;
 }
 
 void World::set_block_velocity(BlockId b, const Vec6& v) {
   if (!v.allFinite()) throw Error(msg("block ", b, ": velocity is not finite"));
-  velocity_[check(b)] = v;
+  s_.blocks.velocity[check(b)] = v;
 }
 
 void World::set_block_stress(BlockId b, const Vec3& s) {
   if (!s.allFinite()) throw Error(msg("block ", b, ": stress is not finite"));
-  stress_[check(b)] = s;
+  s_.blocks.stress[check(b)] = s;
 }
 
 int World::add_point_load(BlockId b, const Vec2& point, const Vec2& force) {
   check(b);
-  if (!point.allFinite()) throw Error(msg("point load on block ", b, ": point is not finite"));
-  if (!force.allFinite()) throw Error(msg("point load on block ", b, ": force is not finite"));
-  point_loads_.push_back({b, point, force});
-  return static_cast<int>(point_loads_.size()) - 1;
+  return s_.loads.add_point_load(b, point, force);
 }
-
-void World::set_point_load(int id, const Vec2& force) {
-  if (id < 0 || id >= static_cast<int>(point_loads_.size())) throw Error(msg("no point load ", id));
-  if (!force.allFinite()) throw Error(msg("point load ", id, ": force is not finite"));
-  point_loads_[id].force = force;
-  // A fixed force replaces any force history the load had.
-  std::erase_if(point_load_histories_, [&](const PointLoadHistory& h) { return h.load == id; });
-}
+void World::set_point_load(int id, const Vec2& force) { s_.loads.set_point_load(id, force); }
 
 int World::add_fixed_point(BlockId b, const Vec2& point) {
   check(b);
-  if (!point.allFinite()) throw Error(msg("fixed point on block ", b, ": point is not finite"));
-  fixed_points_.push_back({b, point, point});
-  return static_cast<int>(fixed_points_.size()) - 1;
+  return s_.boundaries.add_fixed_point(b, point);
 }
 
 int World::add_tracked_point(BlockId b, const Vec2& point) {
   check(b);
   if (!point.allFinite()) throw Error(msg("tracked point on block ", b, ": point is not finite"));
-  tracked_.push_back({b, point, point});
-  return static_cast<int>(tracked_.size()) - 1;
+  s_.tracked.push_back({b, point, point});
+  return static_cast<int>(s_.tracked.size()) - 1;
 }
 
 Vec2 World::tracked_position(int id) const {
-  if (id < 0 || id >= static_cast<int>(tracked_.size())) throw Error(msg("no tracked point ", id));
-  return tracked_[id].point;
+  if (id < 0 || id >= static_cast<int>(s_.tracked.size())) throw Error(msg("no tracked point ", id));
+  return s_.tracked[id].point;
 }
-Vec2 World::tracked_displacement(int id) const { return tracked_position(id) - tracked_[id].origin; }
+Vec2 World::tracked_displacement(int id) const { return tracked_position(id) - s_.tracked[id].origin; }
 BlockId World::tracked_block(int id) const {
   tracked_position(id);
-  return tracked_[id].block;
+  return s_.tracked[id].block;
+}
+
+// ---- Loads and boundaries on edges ---------------------------------------------
+
+int World::add_pressure_load(const std::vector<EdgeRef>& edges, double pressure) {
+  return s_.loads.add_pressure_load(s_.blocks, edges, pressure);
+}
+void World::set_pressure(int id, double pressure) { s_.loads.set_pressure(id, pressure); }
+void World::set_pressure_history(int id, History pressure) { s_.loads.set_pressure_history(id, std::move(pressure)); }
+void World::set_point_load_history(int id, const Vec2& direction, History magnitude) {
+  s_.loads.set_point_load_history(id, direction, std::move(magnitude));
+}
+
+int World::add_displacement_target(BlockId b, const Vec2& point, const Vec2& direction) {
+  return s_.boundaries.add_displacement_target(s_.blocks, b, point, direction);
+}
+void World::set_target_displacement(int id, const Vec2& target) { s_.boundaries.set_target_displacement(id, target); }
+void World::set_target_history(int id, History displacement) {
+  s_.boundaries.set_target_history(id, std::move(displacement));
+}
+void World::set_target_velocity_history(int id, History velocity) {
+  s_.boundaries.set_target_velocity_history(id, std::move(velocity));
+}
+Vec2 World::target_point_displacement(int id) const { return s_.boundaries.target_point_displacement(id); }
+Vec2 World::target_value(int id) const { return s_.boundaries.target_value(id); }
+
+void World::fix_edges(const std::vector<EdgeRef>& edges) { s_.boundaries.fix_edges(s_.blocks, edges); }
+int World::add_viscous_boundary(const std::vector<EdgeRef>& edges) {
+  return s_.boundaries.add_viscous_boundary(s_.blocks, s_.rocks, edges);
+}
+int World::add_spring_boundary(const std::vector<EdgeRef>& edges, double p, bool per_length) {
+  return s_.boundaries.add_spring_boundary(s_.blocks, edges, p, per_length);
+}
+std::vector<Vec2> World::boundary_point_forces(int id) const { return s_.boundaries.boundary_point_forces(id); }
+
+Vec2 World::boundary_force(int id) const {
+  Vec2 sum = Vec2::Zero();
+  for (const Vec2& f : boundary_point_forces(id)) sum += f;
+  return sum;
 }
 
 // ---- Read access ------------------------------------------------------------
 
-std::span<const Vec2> World::block_vertices(BlockId b) const {
-  check(b);
-  return std::span<const Vec2>(vertices_).subspan(vertex_start_[b], vertex_start_[b + 1] - vertex_start_[b]);
-}
+std::span<const Vec2> World::block_vertices(BlockId b) const { return s_.blocks.outline(check(b)); }
 
 std::span<const Vec2> World::block_initial_vertices(BlockId b) const {
   check(b);
-  return std::span<const Vec2>(initial_vertices_).subspan(vertex_start_[b], vertex_start_[b + 1] - vertex_start_[b]);
+  return std::span<const Vec2>(s_.blocks.initial_vertices)
+      .subspan(s_.blocks.vertex_start[b], s_.blocks.vertex_count(b));
 }
 
 int World::block_edge_joint(BlockId b, int edge) const {
   check(b);
-  const int n = vertex_start_[b + 1] - vertex_start_[b];
+  const int n = s_.blocks.vertex_count(b);
   if (edge < 0 || edge >= n) throw Error(msg("block ", b, " has no edge ", edge));
-  return edge_joint_[vertex_start_[b] + edge];
+  return s_.blocks.edge_joint[s_.blocks.vertex_start[b] + edge];
+}
+
+const EdgeTag& World::block_edge_tag(BlockId b, int edge) const {
+  block_edge_joint(b, edge);  // checks both
+  return s_.blocks.edge_tag[s_.blocks.vertex_start[b] + edge];
 }
 
 Vec2 World::velocity_at(BlockId b, const Vec2& p) const {
   check(b);
-  return displacement_matrix(p, centroid_[b]) * velocity_[b];
+  return displacement_matrix(p, s_.blocks.centroid[b]) * s_.blocks.velocity[b];
 }
 
-double World::half_height() const {
-  if (half_height_ > 0) return half_height_;
-  double lo = INFINITY, hi = -INFINITY;
-  for (const Vec2& v : vertices_) {
-    lo = std::min(lo, v.y());
-    hi = std::max(hi, v.y());
-  }
-  return vertices_.empty() ? 0 : 0.5 * (hi - lo);
-}
+double World::half_height() const { return s_.half_height > 0 ? s_.half_height : s_.measured_half_height(); }
 
-double World::suggested_time_step() const {
-  if (block_count() == 0) return 0;
-  const BlockPolygons polys{vertex_start_, vertices_};
-  double h_min = INFINITY, m_min = INFINITY, cp_max = 0, e_max = 0;
-  for (std::size_t b = 0; b < block_count(); ++b) {
-    double longest = 0;
-    const auto v = polys.of(static_cast<int>(b));
-    for (std::size_t k = 0; k < v.size(); ++k) longest = std::max(longest, (v[(k + 1) % v.size()] - v[k]).norm());
-    h_min = std::min(h_min, area_[b] / longest);  // the block's height across its longest edge
-    m_min = std::min(m_min, mass_[b]);
-    cp_max = std::max(cp_max, p_wave_speed(rocks_[material_[b]], controls_.plane));
-    e_max = std::max(e_max, rocks_[material_[b]].youngs);
-  }
-  const double g0 = controls_.g0 > 0 ? controls_.g0 : 50 * e_max;
-  // Eqs. 1–3 with the paper's a = 0.05 and b = 0.177.
-  return std::min(0.05 * h_min / cp_max, 2 * 0.177 * std::sqrt(m_min / g0));
-}
-
-const BlockSparseMatrix& World::last_matrix() const { return impl_->system.stored(); }
-const VecX& World::last_rhs() const { return impl_->rhs; }
+const BlockSparseMatrix& World::last_matrix() const { return stepper_->system().stored(); }
+const VecX& World::last_rhs() const { return stepper_->rhs(); }
 
 std::uint64_t World::state_hash() const {
   std::uint64_t h = 1469598103934665603ULL;
@@ -208,10 +215,11 @@ std::uint64_t World::state_hash() const {
     const auto* p = static_cast<const unsigned char*>(data);
     for (std::size_t i = 0; i < bytes; ++i) h = (h ^ p[i]) * 1099511628211ULL;
   };
-  mix(vertices_.data(), vertices_.size() * sizeof(Vec2));
-  mix(velocity_.data(), velocity_.size() * sizeof(Vec6));
-  mix(stress_.data(), stress_.size() * sizeof(Vec3));
-  for (const Contact& c : contacts_) {
+  const Blocks& bl = s_.blocks;
+  mix(bl.vertices.data(), bl.vertices.size() * sizeof(Vec2));
+  mix(bl.velocity.data(), bl.velocity.size() * sizeof(Vec6));
+  mix(bl.stress.data(), bl.stress.size() * sizeof(Vec3));
+  for (const Contact& c : s_.contacts) {
     mix(&c.vblock, sizeof c.vblock);
     mix(&c.vertex, sizeof c.vertex);
     mix(&c.eblock, sizeof c.eblock);
@@ -221,7 +229,7 @@ std::uint64_t World::state_hash() const {
     mix(&c.normal_force, sizeof c.normal_force);
     mix(&c.shear_force, sizeof c.shear_force);
   }
-  mix(&time_, sizeof time_);
+  mix(&s_.time, sizeof s_.time);
   return h;
 }
 

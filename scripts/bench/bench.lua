@@ -17,7 +17,7 @@
 --          columns scene,threads,blocks,contacts,steps,ms_per_step,block_steps_per_s,
 --          oc_per_step,cg_per_step,cuts,detect_share,assemble_share,solve_share,
 --          update_share,other_share,peak_rss_mb,patch_per_step (CG iterations
---          confined to a re-solve's patch, Controls::patch_hops; cg_per_step
+--          confined to a re-solve's patch, PcgSettings::patch_hops; cg_per_step
 --          counts those over all rows).
 
 local dda = require "dda"

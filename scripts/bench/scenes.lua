@@ -14,8 +14,11 @@
 --          blast(h)  the paper's Section 4 model (100 m square, sets at 45 and
 --                    135 deg with spacing h, chamber, DHI load on the chamber wall,
 --                    blocks under 0.01 h^2 merged into a neighbour).
---          bar       the paper's rock bar Model 1 (500 blocks, g1 = 2e-6 s,
---                    g0 = 20E, half-sine pressure at the left end).
+--          bar       the paper's rock bar Model 1 (scripts/paper/bars.lua: 500
+--                    blocks, g1 = 2e-6 s, g0 = 20E, half-sine pressure at the
+--                    left end, right end fixed).
+--          These are the scenes; tests/scenes.hpp builds the same wall(n) in
+--          C++ for the C++ tests and benchmarks (a test holds the two equal).
 -- Run:     used by scripts/bench/bench.lua (build/dda run scripts/bench/bench.lua --set scene=wall --set n=20)
 -- Writes:  nothing.
 
@@ -48,9 +51,14 @@ function scenes.wall(n, threads)
   return m
 end
 
-function scenes.blast(h, threads)
+-- The paper scripts' modules (blast_model, bars), beside this folder.
+local function require_paper(name)
   package.path = package.path .. ";" .. (debug.getinfo(1, "S").source:match("@?(.*/)") or "./") .. "../paper/?.lua"
-  local blast_model = require "blast_model"
+  return require(name)
+end
+
+function scenes.blast(h, threads)
+  local blast_model = require_paper "blast_model"
   -- Slivers (where joints pass close to the chamber corners) are merged: crushed
   -- by the chamber-wall targets they would force tiny steps.
   local b = blast_model.build{ size = 100, spacing = h, controls = { threads = threads }, min_area = 0.01 * h * h }
@@ -60,16 +68,13 @@ function scenes.blast(h, threads)
 end
 
 function scenes.bar(threads)
-  local E = 50e9
-  local m = dda.model{ plane = "stress", g0 = 20 * E, g1 = 2e-6, g2 = 0.005, gg = 1, threads = threads }
-  local rock = m:rock{ density = 2000, E = E, nu = 0.25 }
+  local bars = require_paper "bars"
+  local m = dda.model{ plane = "stress", g0 = 20 * bars.rock.E, g1 = 2e-6, g2 = 0.005, gg = 1, threads = threads }
+  local rock = m:rock(bars.rock)
   local joint = m:joint{ friction = 40, cohesion = 8e6, tension = 8e6 }
-  m:domain{ box = {0, 0, 20, 1}, rock = rock }
-  m:joint_set{ dip = 0, spacing = 0.2, joint = joint }
-  m:joint_set{ dip = 90, spacing = 0.2, joint = joint }
-  m:generate()
-  m:edges{ on_segment = {0, 0, 0, 1} }:pressure{ {0, 0}, {2.5e-4, 5e6}, {5e-4, 0} }
-  m:edges{ on_segment = {20, 0, 20, 1} }:fix()
+  bars.build(m, 1, rock, joint)
+  bars.left_end(m):pressure{ {0, 0}, {2.5e-4, 5e6}, {5e-4, 0} }
+  bars.right_end(m, 1):fix()
   return m
 end
 

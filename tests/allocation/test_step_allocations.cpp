@@ -13,7 +13,7 @@
 #include <atomic>
 #include <cstddef>
 
-#include "../engine/scenes.hpp"
+#include "../scenes.hpp"
 #include "world/world.hpp"
 
 extern "C" {

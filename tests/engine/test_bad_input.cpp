@@ -1,8 +1,8 @@
 // User errors give dda::Error naming the object and the cause.
 #include <gtest/gtest.h>
 
+#include "../scenes.hpp"
 #include "core/error.hpp"
-#include "scenes.hpp"
 
 using namespace dda;
 

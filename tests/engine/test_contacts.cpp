@@ -4,10 +4,10 @@
 
 #include <map>
 
+#include "../scenes.hpp"
 #include "contact/broad_phase.hpp"
 #include "contact/contact_law.hpp"
 #include "contact/narrow_phase.hpp"
-#include "scenes.hpp"
 
 using namespace dda;
 

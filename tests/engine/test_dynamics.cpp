@@ -4,7 +4,7 @@
 
 #include <cmath>
 
-#include "scenes.hpp"
+#include "../scenes.hpp"
 
 using namespace dda;
 
@@ -195,7 +195,7 @@ TEST(Determinism, SameStateHashForOneTwoAndFourThreads) {
   EXPECT_EQ(run_grid_scene(1), h1);
 }
 
-// Re-solves on patches (Controls::patch_hops): a bar of 1 m blocks with
+// Re-solves on patches (PcgSettings::patch_hops): a bar of 1 m blocks with
 // cohesionless joints, whose contacts open and close behind the wave.
 std::uint64_t run_patch_scene(int threads) {
   World w = test::kicked_bar(60, 3, 1.0);
@@ -219,7 +219,7 @@ TEST(Determinism, WaveProblemSameStateHashForOneTwoAndFourThreads) {
   EXPECT_EQ(run_wave_scene(4), h1);
 }
 
-// Controls::jacobi_refresh_tolerance reaches the block-Jacobi preconditioner:
+// PcgSettings::jacobi_refresh_tolerance reaches the block-Jacobi preconditioner:
 // with 0.5 most inverses serve on while contacts open and close around them,
 // so the CG needs more iterations
 // than with 0 (every rewritten block inverted anew); the preconditioner only
@@ -232,8 +232,8 @@ TEST(Solver, JacobiRefreshToleranceReachesThePreconditioner) {
     // Cohesionless joints open and close behind the wave: their springs come
     // and go, and the diagonal blocks with them.
     w.joint_material(0) = JointMaterial{30, 0, 0};
-    w.controls().preconditioner = Preconditioning::BlockJacobi;
-    w.controls().jacobi_refresh_tolerance = refresh;
+    w.controls().solver.pcg.preconditioner = Preconditioning::BlockJacobi;
+    w.controls().solver.pcg.jacobi_refresh_tolerance = refresh;
     cg = 0;
     for (int i = 0; i < 40; ++i) cg += w.step().cg_iterations;
     std::vector<Vec2> centroids;
@@ -308,7 +308,7 @@ TEST(OpenClose, PredictedStatesSaveIterationsWithinTheTimeStepError) {
   EXPECT_LE(by_prediction, 0.5 * by_time_step) << by_prediction << " m against " << by_time_step << " m";
 }
 
-// Controls::patch_hops: an open-close iteration's re-solve starts on the
+// PcgSettings::patch_hops: an open-close iteration's re-solve starts on the
 // patch around the contacts that changed. Every solve still meets
 // cg_tolerance over all rows, so the answer differs only as much as two
 // solves within that tolerance can, and the open-close iteration's
@@ -322,7 +322,7 @@ TEST(OpenClose, PatchResolvesSaveIterationsWithinTheTimeStepError) {
   auto run = [](int hops, double dt, StepStats& sum) {
     World w = test::kicked_bar(60, 3, 1.0);
     w.joint_material(0) = JointMaterial{30, 0, 0};
-    w.controls().patch_hops = hops;
+    w.controls().solver.pcg.patch_hops = hops;
     w.controls().g1 = dt;
     return centroids_after(w, 6e-4, sum);
   };

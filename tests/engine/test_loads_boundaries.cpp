@@ -3,8 +3,8 @@
 
 #include <cmath>
 
+#include "../scenes.hpp"
 #include "core/error.hpp"
-#include "scenes.hpp"
 
 using namespace dda;
 

@@ -10,9 +10,10 @@
 #include <cstdio>
 #include <cstring>
 
-#include "scenes.hpp"
-#include "solver/linear_solver.hpp"
+#include "../scenes.hpp"
+#include "solver/direct_solver.hpp"
 #include "solver/multigrid.hpp"
+#include "solver/pcg.hpp"
 #include "solver/preconditioner_choice.hpp"
 
 using namespace dda;
@@ -23,7 +24,7 @@ namespace {
 World brick_wall(int n) {
   World w = test::brick_wall(n);
   w.controls().threads = 1;
-  w.controls().preconditioner = Preconditioning::BlockJacobi;
+  w.controls().solver.pcg.preconditioner = Preconditioning::BlockJacobi;
   return w;
 }
 
@@ -234,7 +235,7 @@ TEST(Multigrid, WorldStateHashIsTheSameForOneTwoAndFourThreads) {
   auto run = [](int threads) {
     World w = brick_wall(8);
     w.controls().threads = threads;
-    w.controls().preconditioner = Preconditioning::Multigrid;
+    w.controls().solver.pcg.preconditioner = Preconditioning::Multigrid;
     for (int s = 0; s < 4; ++s) w.step();
     return w.state_hash();
   };
@@ -247,15 +248,14 @@ TEST(PreconditionerChoice, AutoRule) {
   using P = Preconditioning;
   // Explicit choices are kept.
   EXPECT_EQ(choose_preconditioning(P::Multigrid, SystemTraits(10)), P::Multigrid);
-  EXPECT_EQ(choose_preconditioning(P::BlockJacobi, SystemTraits(100000, 1e6)), P::BlockJacobi);
+  EXPECT_EQ(choose_preconditioning(P::BlockJacobi, SystemTraits(100000)), P::BlockJacobi);
   // Small models: block-Jacobi whatever happened.
   SystemTraits small(kMultigridMinBlocks - 1);
   small.last_kind = P::BlockJacobi;
   small.last_cg_per_solve = 1e4;
   EXPECT_EQ(choose_preconditioning(P::Auto, small), P::BlockJacobi);
-  // First step: the stiffness-to-inertia hint, block-Jacobi without one.
+  // First step: block-Jacobi.
   EXPECT_EQ(choose_preconditioning(P::Auto, SystemTraits(1000)), P::BlockJacobi);
-  EXPECT_EQ(choose_preconditioning(P::Auto, SystemTraits(1000, kStiffnessToInertiaForMultigrid)), P::Multigrid);
   // Adaptive, with hysteresis.
   SystemTraits t(1000);
   t.last_kind = P::BlockJacobi;

@@ -1,9 +1,9 @@
 // Polygon integrals against closed forms; validation of bad outlines.
 #include <gtest/gtest.h>
 
+#include "../scenes.hpp"
 #include "core/error.hpp"
 #include "geometry/polygon.hpp"
-#include "scenes.hpp"
 
 using namespace dda;
 

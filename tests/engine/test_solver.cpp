@@ -5,28 +5,18 @@
 // PCG against a direct sparse solve on systems the engine assembled.
 #include <gtest/gtest.h>
 
+#include "../scenes.hpp"
 #include "assembly/contact_operator.hpp"
-#include "scenes.hpp"
-#include "solver/linear_solver.hpp"
+#include "solver/direct_solver.hpp"
+#include "solver/pcg.hpp"
 
 using namespace dda;
 
 namespace {
 
-// A wall of 6 × 8 blocks in running bond on a fixed base, one step under
-// gravity: a system with many contacts and all three contact states possible.
-World brick_wall() {
-  World w;
-  const int rock = w.add_rock_material(test::granite());
-  test::add_fixed_base(w, test::rectangle(-1, -1, 8, 1), rock);
-  for (int row = 0; row < 8; ++row) {
-    const double offset = (row % 2) ? 0.5 : 0.0;
-    for (int col = 0; col < 6; ++col) w.add_block(test::rectangle(offset + col, row * 0.5, 1, 0.5), rock);
-  }
-  w.controls().gravity = Vec2(0, -9.81);
-  w.controls().g1 = 1e-3;
-  return w;
-}
+// The benchmarks' wall(6) (79 blocks in running bond on a fixed base) after
+// its steps under gravity: a system with many contacts.
+World brick_wall() { return test::brick_wall(6); }
 
 void expect_pcg_matches_direct(const World& w, double g1_scale) {
   const BlockSparseMatrix& a = w.last_matrix();

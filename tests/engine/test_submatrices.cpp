@@ -4,10 +4,10 @@
 
 #include <Eigen/Eigenvalues>
 
+#include "../scenes.hpp"
 #include "block/displacement.hpp"
 #include "core/material.hpp"
 #include "geometry/polygon.hpp"
-#include "scenes.hpp"
 
 using namespace dda;
 

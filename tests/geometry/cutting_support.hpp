@@ -9,14 +9,13 @@
 #include <string>
 #include <vector>
 
+#include "../scenes.hpp"
 #include "geometry/cutting.hpp"
 #include "geometry/polygon.hpp"
 
 namespace dda::geometry::test {
 
-inline std::vector<Vec2> rectangle(double x0, double y0, double x1, double y1) {
-  return {Vec2(x0, y0), Vec2(x1, y0), Vec2(x1, y1), Vec2(x0, y1)};
-}
+using dda::test::rectangle;  // (x0, y0, width, height)
 
 inline JointSet persistent_set(double dip, double spacing, Vec2 origin = Vec2::Zero(), int material = 0) {
   JointSet s;

@@ -3,10 +3,13 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 
+#include "../scenes.hpp"
 #include "lua_support.hpp"
 #include "script_helpers.hpp"
 #include "scripting.hpp"
+#include "world/controls.hpp"
 
 using namespace dda::script;
 
@@ -303,6 +306,47 @@ TEST_F(LuaApi, SolverControlsAreReadableWritableAndChecked) {
             std::string::npos);
   EXPECT_NE(error_of("m:controls{ patch_hops = 1.5 }").find("patch_hops"), std::string::npos);
   EXPECT_NE(error_of("m:controls{ cg_static_tolerance = 0 }").find("cg_static_tolerance"), std::string::npos);
+}
+
+// The Lua layer reads, writes and checks the controls through the engine's
+// table (world/controls.hpp): every control in it is in m:controls(), sets to
+// its own value, and out of its range gives the table's rule.
+TEST_F(LuaApi, ControlsFollowTheEngineTable) {
+  run("m = dda.model{}\n"
+      "n = 0\n"
+      "for k, v in pairs(m:controls()) do n = n + 1; m:controls{ [k] = v } end\n");
+  EXPECT_EQ(number("n"), static_cast<double>(dda::control_specs().size()));
+  for (const dda::ControlSpec& s : dda::control_specs()) {
+    run(std::string("v = m:controls().") + s.name + "\n");
+    lua_getglobal(L, "v");
+    EXPECT_FALSE(lua_isnil(L, -1)) << s.name;
+    lua_pop(L, 1);
+    if (s.type != dda::ControlType::Number && s.type != dda::ControlType::Integer) continue;
+    const double bad = s.range.min_open ? s.range.min : s.range.min - 1;
+    const std::string message = error_of("m:controls{ " + std::string(s.name) + " = " + std::to_string(bad) + " }");
+    EXPECT_NE(message.find(std::string("m:controls: option '") + s.name + "' " + s.range.rule), std::string::npos)
+        << message;
+  }
+}
+
+// wall(n) is defined in scripts/bench/scenes.lua (canonical: benchmarks and
+// scripts) and in tests/scenes.hpp (C++ tests and benchmarks): the same
+// model, step after step (state hashes after 3 steps of wall(3)).
+TEST_F(LuaApi, BrickWallIsTheSameSceneInLuaAndCpp) {
+  const std::string folder = (dda::test::source_dir() / "scripts" / "bench").string();
+  run("package.path = '" + folder +
+      "/?.lua;' .. package.path\n"
+      "local scenes = require 'scenes'\n"
+      "local m = scenes.wall(3, 1)\n"
+      "m:step(3)\n"
+      "hash, blocks = m:hash(), #m:blocks{}\n");
+  dda::World w = dda::test::brick_wall(3);
+  w.controls().threads = 1;
+  for (int i = 0; i < 3; ++i) w.step();
+  char hash[32];
+  std::snprintf(hash, sizeof hash, "%016llx", static_cast<unsigned long long>(w.state_hash()));
+  EXPECT_EQ(number("blocks"), static_cast<double>(w.block_count()));
+  EXPECT_EQ(string("hash"), hash);
 }
 
 // FHI: direction × magnitude table, handed to the engine.

@@ -1,5 +1,8 @@
 #pragma once
-// Small scenes shared by the engine tests.
+// The C++ scenes, shared by the tests (engine, geometry, allocation) and the
+// C++ benchmarks (bench/). Lua scripts share scripts/bench/scenes.lua, which
+// is canonical where both define a scene: brick_wall(n) here is its wall(n),
+// and LuaApi.BrickWallIsTheSameSceneInLuaAndCpp holds the two equal.
 #include <cmath>
 #include <vector>
 
@@ -7,6 +10,8 @@
 
 namespace dda::test {
 
+// The rectangle with lower-left corner (x0, y0), width w and height h,
+// counter-clockwise.
 inline std::vector<Vec2> rectangle(double x0, double y0, double w, double h) {
   return {{x0, y0}, {x0 + w, y0}, {x0 + w, y0 + h}, {x0, y0 + h}};
 }
@@ -32,7 +37,7 @@ inline BlockId add_fixed_base(World& w, const std::vector<Vec2>& outline, int ro
   return b;
 }
 
-// wall(N) of issue 8 (scripts/bench/scenes.lua): N columns of 1 m × 0.5 m
+// wall(N) of scripts/bench/scenes.lua: N columns of 1 m × 0.5 m
 // bricks, 2N rows in running bond (half bricks at alternate row ends), on a
 // 1 m base held by three fixed points; quasi-static (Shi's static analysis,
 // gg = 0: velocities reset every step; Δt = 1e-3 s, g2 = 0.001, g0 = 50E),

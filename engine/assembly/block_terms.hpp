@@ -1,0 +1,26 @@
+#pragma once
+// Each block's own terms of the step's system: the diagonal block and the
+// right-hand side from its elasticity, initial stress, inertia and body
+// force, to which loads (loading/) and boundaries (boundary/) add theirs.
+// The contact springs come on top in each open-close iteration
+// (contact_terms.hpp).
+#include <span>
+#include <vector>
+
+#include "block/blocks.hpp"
+#include "block/time_scheme.hpp"
+#include "core/symmetric6.hpp"
+
+namespace dda {
+
+struct BlockTerms {
+  std::vector<Symmetric6> k;  // per block: its diagonal block (upper triangle)
+  std::vector<Vec6> f;        // per block: its right-hand side
+};
+
+// Elasticity (elastic[material], plane stress or strain) and initial stress
+// on the strains, inertia (the time scheme), gravity; sizes `terms`.
+void assemble_block_terms(const Blocks& blocks, std::span<const Mat3> elastic, const Vec2& gravity,
+                          const TimeScheme& scheme, BlockTerms& terms);
+
+}  // namespace dda

@@ -1,0 +1,53 @@
+#pragma once
+// The blocks' state in flat arrays indexed by block id (Box2D's b2BodyState
+// against b2Body): what every step reads and writes first, then what only
+// model building and output read. Block b owns
+// vertices[vertex_start[b] .. vertex_start[b + 1]), counter-clockwise; edge k
+// of a block runs from its vertex k to k + 1.
+#include <span>
+#include <string>
+#include <vector>
+
+#include "core/types.hpp"
+#include "geometry/block_polygons.hpp"
+#include "geometry/edge.hpp"
+
+namespace dda {
+
+struct Blocks {
+  // Hot: the step's arrays.
+  std::vector<int> vertex_start{0};
+  std::vector<Vec2> vertices;
+  std::vector<Vec2> centroid;
+  std::vector<double> area, sxx, syy, sxy;  // area and second moments about the centroid
+  std::vector<double> mass;
+  std::vector<int> material;            // rock material
+  std::vector<Vec3> stress;             // (σxx, σyy, τxy), tension positive
+  std::vector<Vec6> velocity;           // rates of (u0, v0, r0, εx, εy, γxy)
+  std::vector<Vec6> last_displacement;  // the previous step's solution (the warm start)
+  // Cold: parallel to vertices, and per block.
+  std::vector<Vec2> initial_vertices;  // where each vertex started
+  std::vector<int> edge_joint;         // joint material of edge k → k + 1
+  std::vector<EdgeTag> edge_tag;       // what edge k → k + 1 was made from
+  std::vector<Vec2> initial_centroid;
+
+  std::size_t count() const { return vertex_start.empty() ? 0 : vertex_start.size() - 1; }
+  int vertex_count(BlockId b) const { return vertex_start[b + 1] - vertex_start[b]; }
+  std::span<const Vec2> outline(BlockId b) const {
+    return std::span<const Vec2>(vertices).subspan(vertex_start[b], vertex_count(b));
+  }
+  BlockPolygons polygons() const { return {vertex_start, vertices}; }
+};
+
+// A material point of a block (a load, a fixed point, a monitor): where it is
+// now, moving with its block, and where it started.
+struct MaterialPoint {
+  BlockId block;
+  Vec2 point;
+  Vec2 origin;
+};
+
+// Throws dda::Error, naming `what`, unless every edge exists (and there is one).
+void check_edges(const Blocks& blocks, const std::vector<EdgeRef>& edges, const std::string& what);
+
+}  // namespace dda

@@ -1,0 +1,184 @@
+#include "boundary/boundaries.hpp"
+
+#include <cmath>
+
+#include "block/displacement.hpp"
+#include "block/motion.hpp"
+#include "core/error.hpp"
+
+namespace dda {
+
+// ---- Model building ---------------------------------------------------------
+
+int Boundaries::add_fixed_point(BlockId b, const Vec2& point) {
+  if (!point.allFinite()) throw Error(msg("fixed point on block ", b, ": point is not finite"));
+  fixed_points_.push_back({b, point, point});
+  return static_cast<int>(fixed_points_.size()) - 1;
+}
+
+void Boundaries::fix_edges(const Blocks& blocks, const std::vector<EdgeRef>& edges) {
+  check_edges(blocks, edges, "fixed boundary");
+  for (const EdgeRef& e : edges) {
+    const auto v = blocks.outline(e.block);
+    for (int end : {e.edge, (e.edge + 1) % static_cast<int>(v.size())}) {
+      // One fixed point per block vertex, however many of its edges are fixed.
+      bool present = false;
+      for (const FixedPoint& f : fixed_points_) present |= f.block == e.block && f.origin == v[end];
+      if (!present) add_fixed_point(e.block, v[end]);
+    }
+  }
+}
+
+int Boundaries::add_displacement_target(const Blocks& blocks, BlockId b, const Vec2& point, const Vec2& direction) {
+  const std::string what = msg("displacement target ", targets_.size());
+  if (b < 0 || static_cast<std::size_t>(b) >= blocks.count()) throw Error(msg(what, ": no block ", b));
+  if (!point.allFinite()) throw Error(msg(what, ": point is not finite"));
+  if (!direction.allFinite()) throw Error(msg(what, ": direction is not finite"));
+  DisplacementTarget t;
+  t.block = b;
+  t.point = t.origin = point;
+  t.direction = direction.norm() > 0 ? Vec2(direction.normalized()) : Vec2(Vec2::Zero());
+  targets_.push_back(t);
+  return static_cast<int>(targets_.size()) - 1;
+}
+
+const Boundaries::DisplacementTarget& Boundaries::target(int id) const {
+  if (id < 0 || static_cast<std::size_t>(id) >= targets_.size()) throw Error(msg("no displacement target ", id));
+  return targets_[id];
+}
+
+void Boundaries::set_target_displacement(int id, const Vec2& value) {
+  DisplacementTarget& t = target(id);
+  if (!value.allFinite()) throw Error(msg("displacement target ", id, ": target is not finite"));
+  t.mode = DisplacementTarget::Fixed;
+  t.target = t.direction.norm() > 0 ? Vec2(value.x() * t.direction) : value;
+}
+
+void Boundaries::set_target_history(int id, History displacement) {
+  DisplacementTarget& t = target(id);
+  if (t.direction.norm() == 0) throw Error(msg("displacement target ", id, ": a history needs a direction"));
+  t.history = std::move(displacement);
+  t.mode = DisplacementTarget::Displacement;
+}
+
+void Boundaries::set_target_velocity_history(int id, History velocity) {
+  DisplacementTarget& t = target(id);
+  if (t.direction.norm() == 0) throw Error(msg("displacement target ", id, ": a history needs a direction"));
+  t.history = std::move(velocity);
+  t.mode = DisplacementTarget::Velocity;
+}
+
+Vec2 Boundaries::target_point_displacement(int id) const { return target(id).point - target(id).origin; }
+Vec2 Boundaries::target_value(int id) const { return target(id).target; }
+
+int Boundaries::add_viscous_boundary(const Blocks& blocks, const std::vector<RockMaterial>& rocks,
+                                     const std::vector<EdgeRef>& edges) {
+  const int id = static_cast<int>(boundaries_.size());
+  check_edges(blocks, edges, msg("viscous boundary ", id));
+  const int first = static_cast<int>(boundary_points_.size());
+  for (const EdgeRef& e : edges) {
+    const auto v = blocks.outline(e.block);
+    const Vec2 a = v[e.edge], b = v[(e.edge + 1) % v.size()];
+    const double l = (b - a).norm();
+    const Vec2 t = (b - a) / l, n(t.y(), -t.x());  // outward normal of a counter-clockwise outline
+    const RockMaterial& rock = rocks[blocks.material[e.block]];
+    // Eq. 6: C_P from the bulk and shear moduli.
+    const double g = rock.youngs / (2 * (1 + rock.poisson)), k = rock.youngs / (3 * (1 - 2 * rock.poisson));
+    const double cp = std::sqrt((k + 4 * g / 3) / rock.density), cs = std::sqrt(g / rock.density);
+    // Eq. 12: C = C_P n nᵀ + C_S s sᵀ; each end carries half the edge.
+    const Eigen::Matrix2d c = 0.5 * l * rock.density * (cp * n * n.transpose() + cs * t * t.transpose());
+    for (const Vec2& p : {a, b}) boundary_points_.push_back({id, e.block, p, p, c, 0.0, Vec2::Zero()});
+  }
+  boundaries_.push_back({BoundaryKind::Viscous, first, static_cast<int>(boundary_points_.size()) - first});
+  return id;
+}
+
+int Boundaries::add_spring_boundary(const Blocks& blocks, const std::vector<EdgeRef>& edges, double p,
+                                    bool per_length) {
+  const int id = static_cast<int>(boundaries_.size());
+  check_edges(blocks, edges, msg("spring boundary ", id));
+  if (!std::isfinite(p) || p <= 0) throw Error(msg("spring boundary ", id, ": stiffness p must be positive, got ", p));
+  const int first = static_cast<int>(boundary_points_.size());
+  for (const EdgeRef& e : edges) {
+    const auto v = blocks.outline(e.block);
+    const Vec2 a = v[e.edge], b = v[(e.edge + 1) % v.size()];
+    const double k = per_length ? p * (b - a).norm() : p;
+    for (const Vec2& pt : {a, b})
+      boundary_points_.push_back({id, e.block, pt, pt, Eigen::Matrix2d::Zero(), k, Vec2::Zero()});
+  }
+  boundaries_.push_back({BoundaryKind::Spring, first, static_cast<int>(boundary_points_.size()) - first});
+  return id;
+}
+
+std::vector<Vec2> Boundaries::boundary_point_forces(int id) const {
+  if (id < 0 || id >= static_cast<int>(boundaries_.size())) throw Error(msg("no boundary ", id));
+  std::vector<Vec2> f;
+  for (int i = 0; i < boundaries_[id].count; ++i) f.push_back(boundary_points_[boundaries_[id].first + i].force);
+  return f;
+}
+
+// ---- The step ---------------------------------------------------------------
+
+void Boundaries::add_terms(double t_end, double stiff_spring, const Blocks& blocks, const TimeScheme& scheme,
+                           BlockTerms& terms) {
+  // A spring of stiffness matrix k pulling the point towards `goal`.
+  auto add_spring = [&](BlockId b, const Vec2& at, const Eigen::Matrix2d& k, const Vec2& goal) {
+    const Mat26 t = displacement_matrix(at, blocks.centroid[b]);
+    terms.k[b] = Symmetric6(terms.k[b].full() + t.transpose() * k * t);
+    terms.f[b] += t.transpose() * (k * (goal - at));
+  };
+  const double kf = stiff_spring;
+  const Eigen::Matrix2d stiff = kf * Eigen::Matrix2d::Identity();
+  // Fixed points: back to where they started, residual included.
+  for (const FixedPoint& p : fixed_points_) add_spring(p.block, p.point, stiff, p.origin);
+
+  // DHI: towards start + target, along the direction only when one is given.
+  for (DisplacementTarget& t : targets_) {
+    if (t.mode == DisplacementTarget::Displacement) t.target = t.history.value(t_end) * t.direction;
+    if (t.mode == DisplacementTarget::Velocity) t.target = t.history.integral(t_end) * t.direction;
+    if (t.direction.norm() > 0) {
+      // Only the component along the direction is driven: goal = point moved
+      // along the direction by what is still missing.
+      const double missing = (t.origin + t.target - t.point).dot(t.direction);
+      add_spring(t.block, t.point, kf * t.direction * t.direction.transpose(), t.point + missing * t.direction);
+    } else {
+      add_spring(t.block, t.point, stiff, t.origin + t.target);
+    }
+  }
+
+  // VBC dashpots and SBC springs. A dashpot's force at the end-of-step
+  // velocity v1 = velocity_factor·T·D − T·carried_velocity is −c·v1: its
+  // derivative joins the matrix, the rest the right-hand side.
+  for (const BoundaryPoint& p : boundary_points_) {
+    const Mat26 t = displacement_matrix(p.point, blocks.centroid[p.block]);
+    if (boundaries_[p.boundary].kind == BoundaryKind::Viscous) {
+      terms.k[p.block] = Symmetric6(terms.k[p.block].full() + scheme.velocity_factor() * t.transpose() * p.c * t);
+      terms.f[p.block] += t.transpose() * (p.c * (t * scheme.carried_velocity(blocks.velocity[p.block])));
+    } else {
+      // SBC: the fixed-point sub-matrix without the fixed point's residual
+      // term (the paper's §3.3.1): the spring acts on this step's
+      // displacement only, so it draws p·l·Δu from a moving boundary.
+      add_spring(p.block, p.point, p.k * Eigen::Matrix2d::Identity(), p.point);
+    }
+  }
+}
+
+void Boundaries::update(const Blocks& blocks, const VecX& d_all, const TimeScheme& scheme) {
+  auto d_of = [&](BlockId b) -> Vec6 { return d_all.segment<6>(6 * b); };
+  auto moved = [&](BlockId b, const Vec2& p) { return point_displacement(p, blocks.centroid[b], d_of(b)); };
+  move_material_points(fixed_points_, blocks, d_all);
+  for (DisplacementTarget& p : targets_) p.point += moved(p.block, p.point);
+  for (BoundaryPoint& p : boundary_points_) {
+    // Force at the end of the step: −c·v1 (dashpot) or −k·Δu (spring).
+    const Vec2 du = moved(p.block, p.point);
+    if (boundaries_[p.boundary].kind == BoundaryKind::Viscous) {
+      const Mat26 t = displacement_matrix(p.point, blocks.centroid[p.block]);
+      p.force = -p.c * (t * scheme.end_velocity(d_of(p.block), blocks.velocity[p.block]));
+    } else {
+      p.force = -p.k * du;
+    }
+    p.point += du;
+  }
+}
+
+}  // namespace dda

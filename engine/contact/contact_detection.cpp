@@ -1,0 +1,99 @@
+#include "contact/contact_detection.hpp"
+
+#include <algorithm>
+
+#include "contact/broad_phase.hpp"
+#include "contact/narrow_phase.hpp"
+#include "core/parallel.hpp"
+
+namespace dda {
+
+namespace {
+constexpr double kSearchFactor = 2.0;
+constexpr double kRedetectRotation = 0.005;  // rad, well inside the facing-edge angle tolerance
+}  // namespace
+
+void ContactDetection::start_automatic_range(const Blocks& blocks) {
+  std::vector<double> edges;
+  edges.reserve(blocks.vertices.size());
+  for (std::size_t b = 0; b < blocks.count(); ++b)
+    for (int v = blocks.vertex_start[b]; v < blocks.vertex_start[b + 1]; ++v) {
+      const int next = v + 1 < blocks.vertex_start[b + 1] ? v + 1 : blocks.vertex_start[b];
+      edges.push_back((blocks.vertices[next] - blocks.vertices[v]).norm());
+    }
+  std::nth_element(edges.begin(), edges.begin() + edges.size() / 2, edges.end());
+  auto_range_ = 0.1 * edges[edges.size() / 2];
+}
+
+void ContactDetection::widen_automatic_range(double largest_displacement) {
+  auto_range_ = std::max(2.0 * auto_range_, 2.5 * 1.5 * largest_displacement);
+}
+
+bool ContactDetection::list_is_stale(const Blocks& blocks, double range) const {
+  if (detected_vertices_.size() != blocks.vertices.size()) return true;
+  const double allowed = 0.5 * (kSearchFactor - 1.0) * range;
+  const double moved = parallel_max<double>(blocks.vertices.size(), 0.0, [&](std::size_t v) {
+    return (blocks.vertices[v] - detected_vertices_[v]).squaredNorm();
+  });
+  const double turned =
+      parallel_max<double>(blocks.count(), 0.0, [&](std::size_t b) { return std::abs(rotation_since_detection_[b]); });
+  return moved > allowed * allowed || turned > kRedetectRotation || detected_range_ != range;
+}
+
+bool ContactDetection::detect(const Blocks& blocks, double range, std::vector<Contact>& contacts,
+                              ContactLinearisation& lin) {
+  const BlockPolygons polys = blocks.polygons();
+  // Contact i's linearisation, into its two arrays (sized by the caller).
+  auto linearise = [&](std::size_t i, const Contact& c) -> const ContactOffsets& {
+    const ContactKinematics k = contact_kinematics(polys, blocks.centroid, c);
+    lin.gradients[i] = k;
+    return lin.offsets[i] = k;
+  };
+  if (!list_is_stale(blocks, range)) {
+    // Same contacts: refresh their linearisation from the current geometry.
+    lin.gradients.resize(contacts.size());
+    lin.offsets.resize(contacts.size());
+    parallel_for_each(
+        contacts.size(), [&](std::size_t i) { contacts[i].penetration = linearise(i, contacts[i]).d0; }, 256);
+    return false;
+  }
+  NarrowPhaseSettings settings;
+  settings.range = kSearchFactor * range;
+  const auto pairs = find_candidate_pairs(polys, settings.range);
+  std::vector<Contact> found = detect_contacts(polys, blocks.edge_joint, pairs, settings);
+  detected_vertices_ = blocks.vertices;
+  rotation_since_detection_.assign(blocks.count(), 0.0);
+  detected_range_ = range;
+
+  // Carry each contact's state over from the previous step (same vertex and
+  // edge); new contacts start locked when touching, open otherwise.
+  std::vector<int> order(contacts.size());
+  for (std::size_t i = 0; i < order.size(); ++i) order[i] = static_cast<int>(i);
+  std::sort(order.begin(), order.end(), [&](int x, int y) { return identity_less(contacts[x], contacts[y]); });
+  lin.gradients.resize(found.size());
+  lin.offsets.resize(found.size());
+  parallel_for_each(found.size(), [&](std::size_t i) {
+    Contact& c = found[i];
+    const auto it = std::lower_bound(order.begin(), order.end(), c,
+                                     [&](int x, const Contact& key) { return identity_less(contacts[x], key); });
+    const bool known = it != order.end() && same_identity(contacts[*it], c);
+    if (known) set_iteration_state(c, iteration_state(contacts[*it]));  // (penetration: set below)
+    const ContactOffsets& k = linearise(i, c);
+    if (!known) {
+      const bool touching = k.d0 >= -1e-9 * k.edge_length;
+      c.state = touching ? ContactState::Locked : ContactState::Open;
+      c.intact = touching && first_detection_;
+    }
+    c.penetration = k.d0;
+  });
+  contacts = std::move(found);
+  first_detection_ = false;
+  return true;
+}
+
+void ContactDetection::add_rotations(const VecX& d) {
+  parallel_for_each(
+      rotation_since_detection_.size(), [&](std::size_t b) { rotation_since_detection_[b] += d[6 * b + 2]; }, 256);
+}
+
+}  // namespace dda

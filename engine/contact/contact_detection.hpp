@@ -1,0 +1,59 @@
+#pragma once
+// The DetectContacts stage: which vertex-edge pairs are contacts this step,
+// with the state each carries over, and their linearisation.
+//
+// Contacts are searched for over twice the range a step can close, and the
+// list is reused until a vertex has moved half the difference, or a block
+// turned by kRedetectRotation, since the last search (a Verlet list): no
+// contact that can close in the step is missed, and wave problems, whose
+// blocks move micrometres, search once. The linearisation is refreshed every
+// step.
+#include <span>
+#include <vector>
+
+#include "block/blocks.hpp"
+#include "contact/contact.hpp"
+#include "contact/contact_law.hpp"
+
+namespace dda {
+
+// The contacts' linearisation at the start of the step (contact_law.hpp), in
+// two arrays parallel to the contact list.
+struct ContactLinearisation {
+  std::vector<ContactGradients> gradients;
+  std::vector<ContactOffsets> offsets;
+};
+
+class ContactDetection {
+ public:
+  // The automatic range starts at a tenth of the median edge length (fine
+  // models then do not carry their blocks' second neighbours as contacts),
+  // set again whenever the model's blocks change.
+  void start_automatic_range(const Blocks& blocks);
+  // The contact range: `fixed` when positive, else the automatic range, at
+  // most Shi's 2.5·g2·(half height) (`shi_range`), which the g2 bound on a
+  // step's motion already guarantees.
+  double range(double fixed, double shi_range) const { return fixed > 0 ? fixed : std::min(shi_range, auto_range_); }
+  // Widens the automatic range past a step's largest vertex motion (the step
+  // is then redone with the same Δt; the range only widens).
+  void widen_automatic_range(double largest_displacement);
+
+  // Searches again when the list is stale (new contacts start locked when
+  // touching, open otherwise; intact when touching before the first step;
+  // known ones keep their iteration state), then linearises every contact
+  // and sets its penetration. Returns whether it searched.
+  bool detect(const Blocks& blocks, double range, std::vector<Contact>& contacts, ContactLinearisation& linearisation);
+  // The accepted step's rotations, for the redetection rule.
+  void add_rotations(const VecX& d);
+
+ private:
+  bool list_is_stale(const Blocks& blocks, double range) const;
+
+  double auto_range_ = 0;        // the automatic contact range so far (only widens)
+  bool first_detection_ = true;  // contacts found before the first step are intact joints
+  std::vector<Vec2> detected_vertices_;
+  std::vector<double> rotation_since_detection_;
+  double detected_range_ = 0;
+};
+
+}  // namespace dda

@@ -1,0 +1,58 @@
+#pragma once
+// The contacts' side of the open-close iteration: the first guess of their
+// states (PredictStates), the open / sliding / locked decision after each
+// solve (CheckContacts, Mohr-Coulomb in contact_law.hpp), and what a step
+// keeps for a redo and leaves behind once accepted.
+#include <span>
+#include <vector>
+
+#include "contact/contact.hpp"
+#include "contact/contact_detection.hpp"
+#include "contact/contact_law.hpp"
+#include "core/material.hpp"
+
+namespace dda {
+
+// The contact law's parameters for a step.
+struct ContactParameters {
+  double g0 = 0;           // normal spring (resolved: never 0)
+  double shear_ratio = 0;  // shear spring / normal spring
+  double tolerance = 0;    // open-close hysteresis (m)
+  std::span<const JointMaterial> joints;
+  std::span<const double> tan_friction;  // tan φ per joint material
+};
+
+// Per contact, parallel to the contact list: what the open-close iteration
+// works on.
+struct OpenCloseState {
+  std::vector<ContactIterate> iterate;
+  std::vector<char> changed;                 // by the last check (its rows are reassembled)
+  std::vector<ContactIterationState> saved;  // at the start of the step, for a redo
+};
+
+// The contacts' iteration state at the start of a step, and back to it.
+void save_contact_states(std::span<const Contact> contacts, OpenCloseState& s);
+void restore_contact_states(std::span<Contact> contacts, const OpenCloseState& s);
+
+// An attempt's starting point: each contact's shear offset and the normal
+// force of the last accepted solve (Shi's friction lag).
+void start_open_close(std::span<const Contact> contacts, const ContactLinearisation& lin, OpenCloseState& s);
+
+// The open-close iteration's first guess from a warm start d (see the .cpp
+// for the transitions taken and those not).
+void predict_contact_states(std::span<Contact> contacts, const ContactLinearisation& lin, const VecX& d,
+                            const ContactParameters& p, OpenCloseState& s);
+
+// The open-close decision after a solve d; records each contact's
+// penetration and forces. True when any contact changed.
+bool check_contact_states(std::span<Contact> contacts, const ContactLinearisation& lin, const VecX& d,
+                          const ContactParameters& p, OpenCloseState& s);
+
+// The deepest penetration of a closed contact (the g2 bound).
+double deepest_penetration(std::span<const Contact> contacts);
+
+// The accepted step: a contact that ends it locked keeps (or takes) its shear
+// reference point; others drop it.
+void keep_shear_references(std::span<Contact> contacts, const ContactLinearisation& lin, const OpenCloseState& s);
+
+}  // namespace dda

@@ -1,0 +1,84 @@
+#include "loading/loads.hpp"
+
+#include <cmath>
+
+#include "block/displacement.hpp"
+#include "core/error.hpp"
+
+namespace dda {
+
+int Loads::add_point_load(BlockId b, const Vec2& point, const Vec2& force) {
+  if (!point.allFinite()) throw Error(msg("point load on block ", b, ": point is not finite"));
+  if (!force.allFinite()) throw Error(msg("point load on block ", b, ": force is not finite"));
+  point_loads_.push_back({b, point, force});
+  return static_cast<int>(point_loads_.size()) - 1;
+}
+
+void Loads::set_point_load(int id, const Vec2& force) {
+  if (id < 0 || id >= static_cast<int>(point_loads_.size())) throw Error(msg("no point load ", id));
+  if (!force.allFinite()) throw Error(msg("point load ", id, ": force is not finite"));
+  point_loads_[id].force = force;
+  // A fixed force replaces any force history the load had.
+  std::erase_if(point_load_histories_, [&](const PointLoadHistory& h) { return h.load == id; });
+}
+
+void Loads::set_point_load_history(int id, const Vec2& direction, History magnitude) {
+  if (id < 0 || id >= static_cast<int>(point_loads_.size())) throw Error(msg("no point load ", id));
+  if (!direction.allFinite() || direction.norm() == 0)
+    throw Error(msg("point load ", id, ": direction must be a non-zero vector"));
+  for (PointLoadHistory& h : point_load_histories_)
+    if (h.load == id) {
+      h = {id, direction, std::move(magnitude)};
+      return;
+    }
+  point_load_histories_.push_back({id, direction, std::move(magnitude)});
+}
+
+int Loads::add_pressure_load(const Blocks& blocks, const std::vector<EdgeRef>& edges, double pressure) {
+  const std::string what = msg("pressure load ", pressure_loads_.size());
+  check_edges(blocks, edges, what);
+  if (!std::isfinite(pressure)) throw Error(msg(what, ": pressure is not finite"));
+  pressure_loads_.push_back({edges, pressure, History(), false});
+  return static_cast<int>(pressure_loads_.size()) - 1;
+}
+
+void Loads::set_pressure(int id, double pressure) {
+  if (id < 0 || id >= static_cast<int>(pressure_loads_.size())) throw Error(msg("no pressure load ", id));
+  if (!std::isfinite(pressure)) throw Error(msg("pressure load ", id, ": pressure is not finite"));
+  pressure_loads_[id].pressure = pressure;
+  pressure_loads_[id].from_history = false;
+}
+
+void Loads::set_pressure_history(int id, History pressure) {
+  if (id < 0 || id >= static_cast<int>(pressure_loads_.size())) throw Error(msg("no pressure load ", id));
+  pressure_loads_[id].history = std::move(pressure);
+  pressure_loads_[id].from_history = true;
+}
+
+void Loads::add_terms(double t_end, const Blocks& blocks, BlockTerms& terms) {
+  auto add_force = [&](BlockId b, const Vec2& at, const Vec2& force) {
+    terms.f[b] += displacement_matrix(at, blocks.centroid[b]).transpose() * force;
+  };
+  for (const PointLoadHistory& h : point_load_histories_)
+    point_loads_[h.load].force = h.direction * h.magnitude.value(t_end);
+  for (const PointLoad& p : point_loads_) add_force(p.block, p.point, p.force);
+
+  // SHI: ∫ Tᵀ(−p n) dl over a straight edge is l·Tᵀ(midpoint)·(−p n).
+  for (PressureLoad& load : pressure_loads_) {
+    if (load.from_history) load.pressure = load.history.value(t_end);
+    for (const EdgeRef& e : load.edges) {
+      const BlockPolygons polys = blocks.polygons();
+      const Vec2& a = polys.vertex(e.block, e.edge);
+      const Vec2& b = polys.vertex(e.block, e.edge + 1);
+      const Vec2 outward((b - a).y(), -(b - a).x());  // length l, outward for a counter-clockwise outline
+      add_force(e.block, 0.5 * (a + b), -load.pressure * outward);
+    }
+  }
+}
+
+void Loads::move_points(const Blocks& blocks, const VecX& d) {
+  for (PointLoad& p : point_loads_)
+    p.point += point_displacement(p.point, blocks.centroid[p.block], d.segment<6>(6 * p.block));
+}
+
+}  // namespace dda

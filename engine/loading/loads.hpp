@@ -1,0 +1,56 @@
+#pragma once
+// Loads on the blocks (the paper's point loads, FHI and SHI): what a model
+// holds, and their terms in each step. Histories are evaluated at the end of
+// the step, t + Δt; loads act at material points that move with their block.
+#include <vector>
+
+#include "assembly/block_terms.hpp"
+#include "block/blocks.hpp"
+#include "loading/history.hpp"
+
+namespace dda {
+
+class Loads {
+ public:
+  // A point load fixed to the material point `point` of block b (checked by
+  // the caller).
+  int add_point_load(BlockId b, const Vec2& point, const Vec2& force);
+  void set_point_load(int id, const Vec2& force);  // also drops a force history
+  // FHI: the point load's force becomes direction × magnitude(t).
+  void set_point_load_history(int id, const Vec2& direction, History magnitude);
+  // SHI: a pressure (Pa) on edges, normal to each edge and pushing into its
+  // block, integrated exactly along the edge (its current length and normal).
+  int add_pressure_load(const Blocks& blocks, const std::vector<EdgeRef>& edges, double pressure);
+  void set_pressure(int id, double pressure);
+  void set_pressure_history(int id, History pressure);
+
+  // The step: forces at t_end into the right-hand side, serially in a fixed
+  // order (few next to the blocks).
+  void add_terms(double t_end, const Blocks& blocks, BlockTerms& terms);
+  // The accepted step's displacement d moves the load points with their
+  // blocks (before the blocks themselves move).
+  void move_points(const Blocks& blocks, const VecX& d);
+
+ private:
+  struct PointLoad {
+    BlockId block;
+    Vec2 point;
+    Vec2 force;
+  };
+  struct PointLoadHistory {
+    int load;
+    Vec2 direction;
+    History magnitude;
+  };
+  struct PressureLoad {
+    std::vector<EdgeRef> edges;
+    double pressure;
+    History history;
+    bool from_history;
+  };
+  std::vector<PointLoad> point_loads_;
+  std::vector<PointLoadHistory> point_load_histories_;
+  std::vector<PressureLoad> pressure_loads_;
+};
+
+}  // namespace dda

@@ -1,0 +1,35 @@
+#pragma once
+// What the controls tell the linear solver: one part per backend, each read by
+// its backend alone (LinearSolver::begin_step). A new backend (a sparse
+// direct factorisation, PETSc) adds its part here and its name to
+// make_linear_solver; the step does not change.
+namespace dda {
+
+// The PCG preconditioner. Block-Jacobi (the inverse of each block's 6×6
+// diagonal) is cheap and enough where inertia dominates (waves); a multigrid
+// preconditioner pays off where contacts and elasticity dominate (quasi-static
+// walls, slopes). Auto picks by the system at hand (preconditioner_choice.hpp).
+enum class Preconditioning { Auto, BlockJacobi, Multigrid };
+
+// Knobs of the preconditioned conjugate-gradient solver (pcg.hpp) alone.
+struct PcgSettings {
+  Preconditioning preconditioner = Preconditioning::Auto;
+  // Block-Jacobi keeps a block's inverse while every entry of the diagonal
+  // block stays within this fraction (of its largest entry) of the block the
+  // inverse was made from. How fast the CG converges depends on it, and
+  // where a loose open-close solve stops (which friction's normal force
+  // sees), not the tolerance reached; 0: invert every rewritten block anew.
+  double jacobi_refresh_tolerance = 1e-4;
+  // A re-solve after a local change first solves on the changed rows and
+  // those within this many couplings of them, the rest held (PcgSolver); 0:
+  // off. Only in steps whose solve regime allows local re-solves (wave
+  // problems); the global PCG then checks the whole residual and finishes if
+  // need be, so the solve meets its tolerance either way.
+  int patch_hops = 8;
+};
+
+struct SolverSettings {
+  PcgSettings pcg;
+};
+
+}  // namespace dda

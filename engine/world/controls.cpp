@@ -1,0 +1,260 @@
+#include "world/controls.hpp"
+
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+
+#include "core/error.hpp"
+
+namespace dda {
+
+namespace {
+
+constexpr double kInf = 1e308;
+constexpr ControlRange kPositive{0, kInf, true, false, "must be positive"};
+constexpr ControlRange kZeroOrPositive{0, kInf, false, false, "must be zero or positive"};
+constexpr ControlRange kUnitInterval{0, 1, false, false, "must lie in [0, 1]"};
+constexpr ControlRange kOpenUnitInterval{0, 1, true, true, "must lie in (0, 1)"};
+constexpr ControlRange kFraction{0, 1, false, true, "must lie in [0, 1)"};
+constexpr ControlRange kAtLeastOne{1, kInf, false, false, "must be at least 1"};
+constexpr ControlRange kZeroOffOrPositive{0, kInf, false, false, "must be zero (off) or positive"};
+constexpr ControlRange kZeroAutomaticOrPositive{0, kInf, false, false, "must be zero (automatic) or positive"};
+constexpr ControlRange kZeroEveryCoreOrPositive{0, kInf, false, false, "must be zero (every core) or positive"};
+
+constexpr const char* kPlaneNames[] = {"stress", "strain"};                            // PlaneMode order
+constexpr const char* kPreconditionerNames[] = {"auto", "block_jacobi", "multigrid"};  // Preconditioning order
+
+constexpr ControlSpec number(const char* name, double& (*field)(Controls&), ControlRange range, const char* doc,
+                             const char* default_text = nullptr) {
+  return {name, ControlType::Number, doc, default_text, range, {}, field, nullptr, nullptr, nullptr, nullptr, nullptr};
+}
+constexpr ControlSpec integer(const char* name, int& (*field)(Controls&), ControlRange range, const char* doc) {
+  return {name, ControlType::Integer, doc, nullptr, range, {}, nullptr, field, nullptr, nullptr, nullptr, nullptr};
+}
+constexpr ControlSpec flag(const char* name, bool& (*field)(Controls&), const char* doc) {
+  return {name, ControlType::Flag, doc, nullptr, {}, {}, nullptr, nullptr, field, nullptr, nullptr, nullptr};
+}
+constexpr ControlSpec vector(const char* name, Vec2& (*field)(Controls&), const char* doc) {
+  return {name, ControlType::Vector, doc, nullptr, {}, {}, nullptr, nullptr, nullptr, field, nullptr, nullptr};
+}
+constexpr ControlSpec choice(const char* name, std::span<const char* const> names, int (*get)(const Controls&),
+                             void (*set)(Controls&, int), const char* doc) {
+  return {name, ControlType::Choice, doc, nullptr, {}, names, nullptr, nullptr, nullptr, nullptr, get, set};
+}
+
+// One row per control, in the order Lua lists them. The doc strings are the
+// "meaning" column of docs/scripting.md's controls table.
+const ControlSpec kControls[] = {
+    choice(
+        "plane", kPlaneNames, [](const Controls& c) { return static_cast<int>(c.plane); },
+        [](Controls& c, int i) { c.plane = static_cast<PlaneMode>(i); },
+        "`\"stress\"` or `\"strain\"` (plane stress / plane strain elasticity)"),
+    number(
+        "g0", [](Controls& c) -> double& { return c.g0; }, kZeroOrPositive,
+        "normal contact spring stiffness (N/m); 0 = 50 × the largest E"),
+    number(
+        "g1", [](Controls& c) -> double& { return c.g1; }, kZeroOrPositive,
+        "upper limit of the time step (s); 0 = from the paper's Eqs. 1–3"),
+    number(
+        "g2", [](Controls& c) -> double& { return c.g2; }, kPositive,
+        "largest step displacement / half the model height; exceeding it cuts Δt"),
+    number(
+        "gg", [](Controls& c) -> double& { return c.gg; }, kUnitInterval,
+        "dynamic parameter in [0, 1]: share of the velocity carried to the next step (1 = fully dynamic, "
+        "0 = static)"),
+    number(
+        "shear_ratio", [](Controls& c) -> double& { return c.shear_ratio; }, kZeroOrPositive,
+        "shear contact spring = shear_ratio × g0 (Shi's 2/5)"),
+    integer(
+        "open_close_limit", [](Controls& c) -> int& { return c.open_close_limit; }, kAtLeastOne,
+        "open-close iterations before Δt is cut and the step redone"),
+    number(
+        "contact_tolerance", [](Controls& c) -> double& { return c.contact_tolerance; }, kZeroOrPositive,
+        "open-close hysteresis, fraction of half the model height"),
+    number(
+        "contact_range", [](Controls& c) -> double& { return c.contact_range; }, kZeroOrPositive,
+        "m: blocks closer than this at the start of a step are in contact; a step in which a vertex moves"
+        " more than range / 2.5 is cut and redone. Automatic: starts at a tenth of the median edge length"
+        " and widens (the step redone with the same Δt) whenever a vertex moves further than range / 2.5,"
+        " up to Shi's 2.5·g2·(half height)",
+        "0 (automatic)"),
+    number(
+        "fixed_point_factor", [](Controls& c) -> double& { return c.fixed_point_factor; }, kPositive,
+        "fixed-point spring = factor × g0"),
+    vector(
+        "gravity", [](Controls& c) -> Vec2& { return c.gravity; }, "gravity vector (m/s²), e.g. `{0, -9.81}`"),
+    number(
+        "cut_factor", [](Controls& c) -> double& { return c.cut_factor; }, kOpenUnitInterval,
+        "Δt multiplier when a step is redone, in (0, 1)", "1/3"),
+    integer(
+        "max_step_cuts", [](Controls& c) -> int& { return c.max_step_cuts; }, kZeroOrPositive,
+        "cuts in one step before the step fails with an error"),
+    number(
+        "cg_tolerance", [](Controls& c) -> double& { return c.cg_tolerance; }, kPositive,
+        "relative residual of the conjugate-gradient solve (of the accepted solution)"),
+    number(
+        "cg_open_close_tolerance", [](Controls& c) -> double& { return c.cg_open_close_tolerance; }, kPositive,
+        "relative residual while contact states still change, used after a step whose solves took over 30"
+        " CG iterations (walls). Wave problems solve every open-close iteration tightly: their residual "
+        "is measured against a right-hand side that the blocks' inertia dominates, and 1e-4 of it moved "
+        "the reflected amplitudes of Fig. 11 (Models 5 and 6) by 8–13 % from where the scheme converges; "
+        "once the states hold, the solve is tightened to `cg_tolerance` and the states checked again. "
+        "Equal to `cg_tolerance`: solve tightly every time. That is the plain scheme, whose last solve's "
+        "friction lags a solve with other contact states. On walls its answer differs from the default "
+        "scheme's by up to 6 % (`docs/performance.md`)"),
+    number(
+        "cg_static_tolerance", [](Controls& c) -> double& { return c.cg_static_tolerance; }, kPositive,
+        "relative residual of the accepted solution in static analysis (`gg = 0`) after a step whose "
+        "solves took over 30 CG iterations (walls); the larger of it and `cg_tolerance` applies. There "
+        "the friction already carries the error of the loose open-close solves and no velocity carries a "
+        "displacement error on, so tighter solves change the answer less than the loose solves do "
+        "(wall(20), 300 steps: 1e-6 and 1e-10 agree to 1.7e-11 m, and both end 7.5e-8 m from the scheme's"
+        " limit with every solve at 1e-12 or tighter); wall(40) runs 1.6× faster than at 1e-10. Dynamic "
+        "analysis keeps `cg_tolerance` (a wall with `gg = 1` moved 15× further from the converged answer "
+        "at 1e-6). Equal to `cg_tolerance`: off"),
+    flag(
+        "predict_states", [](Controls& c) -> bool& { return c.predict_states; },
+        "in wave problems (steps after short solves, where the warm start extrapolates the motion), start"
+        " each step's open-close iteration from the contact states the warm start implies: contacts that "
+        "close, and closed contacts that start or stop sliding; never an opening or a joint failure, "
+        "which only a solve decides. Fewer open-close iterations in wave problems (blast(2) over its 0.05"
+        " s: 2.95 → 2.08 per step); the answer is another consistent set of states, so results differ "
+        "from `false` beyond round-off (blast(2) PPV at MP1 by 0.2 %)"),
+    integer(
+        "patch_hops", [](Controls& c) -> int& { return c.solver.pcg.patch_hops; }, kZeroOffOrPositive,
+        "in wave problems, a re-solve after contacts changed state first solves on the rows of those "
+        "contacts' blocks and the rows within this many couplings of them, the rest held; then the whole "
+        "residual is checked and the solve finished over all rows if need be, so it meets `cg_tolerance` "
+        "either way. Where the blocks' inertia dominates their springs (the paper's blast) a local change"
+        " stays local: blast(0.5) takes 7.0 instead of 12.5 iterations over all rows per step (plus 5.5 "
+        "on patches of a few hundred rows). Not used where the patch would exceed a quarter of the rows, "
+        "nor after long solves (walls); 0: off. The answer differs from `0` within the CG tolerance (and "
+        "what the open-close iteration's hysteresis makes of that)"),
+    number(
+        "jacobi_refresh_tolerance", [](Controls& c) -> double& { return c.solver.pcg.jacobi_refresh_tolerance; },
+        kFraction,
+        "block-Jacobi keeps a block's inverse while every entry of the diagonal block stays within this "
+        "fraction (of its largest entry) of the block it was made from; in [0, 1), 0: invert every "
+        "rewritten block. Changes how fast the solve converges; the answer only as far as the loose "
+        "open-close solves' stopping points reach it (through the normal force friction uses), or beyond "
+        "`cg_tolerance` not at all with `cg_open_close_tolerance = cg_tolerance`"),
+    choice(
+        "preconditioner", kPreconditionerNames,
+        [](const Controls& c) { return static_cast<int>(c.solver.pcg.preconditioner); },
+        [](Controls& c, int i) { c.solver.pcg.preconditioner = static_cast<Preconditioning>(i); },
+        "`\"auto\"`, `\"block_jacobi\"` or `\"multigrid\"`"),
+    integer(
+        "cg_max_iterations", [](Controls& c) -> int& { return c.cg_max_iterations; }, kZeroAutomaticOrPositive,
+        "0 = automatic"),
+    integer(
+        "threads", [](Controls& c) -> int& { return c.threads; }, kZeroEveryCoreOrPositive,
+        "worker threads (0 = every core); `--threads` overrides it"),
+};
+
+// Read access through the setters' accessors (they only return a reference).
+Controls& writable(const Controls& c) { return const_cast<Controls&>(c); }
+
+// A default as the docs write it: %g, and below 1e-3 the shortest exponent
+// form that reads back the same, without padding (1e-9, not 1e-09).
+std::string number_text(double v) {
+  char buf[40];
+  std::snprintf(buf, sizeof buf, "%g", v);
+  if (v != 0 && std::abs(v) < 1e-3)
+    for (int digits = 0; digits < 17; ++digits) {
+      std::snprintf(buf, sizeof buf, "%.*e", digits, v);
+      if (std::strtod(buf, nullptr) == v) break;
+    }
+  std::string s;
+  for (const char* p = buf; *p; ++p)
+    if (!(p[0] == '0' && p > buf + 1 && p[-1] == '-' && p[-2] == 'e')) s += *p;  // 1e-09 → 1e-9
+  return s;
+}
+
+}  // namespace
+
+std::span<const ControlSpec> control_specs() { return kControls; }
+
+const ControlSpec* find_control(std::string_view name) {
+  for (const ControlSpec& s : kControls)
+    if (name == s.name) return &s;
+  return nullptr;
+}
+
+const char* ControlSpec::violated(const Controls& c) const {
+  switch (type) {
+    case ControlType::Number: {
+      const double v = number(writable(c));
+      return std::isfinite(v) && range.admits(v) ? nullptr : range.rule;
+    }
+    case ControlType::Integer:
+      return range.admits(integer(writable(c))) ? nullptr : range.rule;
+    case ControlType::Flag:
+      return nullptr;
+    case ControlType::Vector:
+      return vector(writable(c)).allFinite() ? nullptr : "must be finite";
+    case ControlType::Choice: {
+      const int i = get_choice(c);
+      return i >= 0 && i < static_cast<int>(choices.size()) ? nullptr : "is not one of its choices";
+    }
+  }
+  return nullptr;
+}
+
+std::string ControlSpec::value_text(const Controls& c) const {
+  switch (type) {
+    case ControlType::Number:
+      return msg(number(writable(c)));
+    case ControlType::Integer:
+      return msg(integer(writable(c)));
+    case ControlType::Flag:
+      return flag(writable(c)) ? "true" : "false";
+    case ControlType::Vector: {
+      const Vec2 v = vector(writable(c));
+      return msg("{", v.x(), ", ", v.y(), "}");
+    }
+    case ControlType::Choice: {
+      const int i = get_choice(c);
+      return i >= 0 && i < static_cast<int>(choices.size()) ? msg("\"", choices[i], "\"") : msg(i);
+    }
+  }
+  return "";
+}
+
+int ControlSpec::find_choice(std::string_view name) const {
+  for (std::size_t i = 0; i < choices.size(); ++i)
+    if (name == choices[i]) return static_cast<int>(i);
+  return -1;
+}
+
+std::string ControlSpec::choice_list() const {
+  std::string s;
+  for (std::size_t i = 0; i < choices.size(); ++i)
+    s += msg(i == 0 ? "" : i + 1 == choices.size() ? " or " : ", ", "\"", choices[i], "\"");
+  return s;
+}
+
+void validate_controls(const Controls& c) {
+  // Runs every step: a message is built only when a check fails.
+  for (const ControlSpec& s : kControls)
+    if (const char* rule = s.violated(c)) throw Error(msg("controls: ", s.name, " ", rule, ", got ", s.value_text(c)));
+}
+
+std::string controls_markdown_table() {
+  const Controls defaults;
+  std::string out = "| option | default | meaning |\n|---|---|---|\n";
+  for (const ControlSpec& s : kControls) {
+    std::string def;
+    if (s.default_text)
+      def = s.default_text;
+    else if (s.type == ControlType::Number)
+      def = number_text(s.number(writable(defaults)));
+    else if (s.type == ControlType::Integer)
+      def = s.value_text(defaults);
+    else
+      def = msg("`", s.value_text(defaults), "`");
+    out += msg("| `", s.name, "` | ", def, " | ", s.doc, " |\n");
+  }
+  return out;
+}
+
+}  // namespace dda

@@ -1,0 +1,101 @@
+#pragma once
+// The controls of a World: what a script sets with dda.model{...} and
+// m:controls{...}. They may change between steps and are checked at the
+// start of each step.
+//
+// Every control is one row of the table control_specs() (controls.cpp): its
+// name (the Lua name), its type, its check, its documentation and how the
+// docs show its default (the value itself is the field's initializer below).
+// The Lua layer reads, writes and checks controls through the table alone,
+// the engine checks them through it (validate_controls), and the table of
+// docs/scripting.md is generated from it (controls_markdown_table; a test
+// holds the two equal). Adding a control is its field here and its row there.
+#include <span>
+#include <string>
+
+#include "core/material.hpp"
+#include "core/types.hpp"
+#include "solver/solver_settings.hpp"
+
+namespace dda {
+
+struct Controls {
+  PlaneMode plane = PlaneMode::Stress;
+  double g0 = 0;             // normal contact spring (N/m per unit thickness); 0 → 50 × largest E
+  double g1 = 0;             // upper step time (s); 0 → estimate from Eqs. 1–3 (suggested_time_step)
+  double g2 = 0.005;         // largest step displacement / half the model height
+  double gg = 1;             // dynamic parameter: share of velocity carried into the next step
+  double shear_ratio = 0.4;  // shear spring = shear_ratio × g0 (Shi's 2/5)
+  int open_close_limit = 6;  // open-close iterations before Δt is cut and the step redone
+  // Open-close hysteresis, as a fraction of half the model height: a closed
+  // contact opens once separated by more than this, an open one closes once
+  // penetrated by more; a locked contact slides once its shear force exceeds
+  // its strength by the shear spring times this. Without it, contacts that
+  // carry next to no force (the Poisson-loaded vertical joints of a wall)
+  // flip state on round-off and the iteration never settles.
+  double contact_tolerance = 1e-9;
+  double contact_range = 0;         // m; 0 → automatic (contact/contact_detection.hpp)
+  double fixed_point_factor = 100;  // fixed-point spring = factor × g0
+  Vec2 gravity = Vec2::Zero();      // m/s²
+  double cut_factor = 1.0 / 3.0;    // Δt multiplier when a step is redone
+  int max_step_cuts = 20;           // cuts in one step before giving up (error)
+  // Relative residuals: of the accepted solution; of the open-close solves
+  // while contact states change; of the accepted solution in static analysis
+  // (gg = 0). Where each applies: world/solve_regime.hpp.
+  double cg_tolerance = 1e-10;
+  double cg_open_close_tolerance = 1e-4;
+  double cg_static_tolerance = 1e-6;
+  bool predict_states = true;  // first guess of the contact states from the warm start (solve_regime.hpp)
+  // The linear solver's own knobs (solver/solver_settings.hpp): the PCG's
+  // preconditioner, block-Jacobi refresh tolerance and re-solve patches.
+  SolverSettings solver;
+  int cg_max_iterations = 0;  // 0 → 10 × unknowns + 100
+  int threads = 0;            // 0 → every core
+};
+
+enum class ControlType { Number, Integer, Flag, Choice, Vector };
+
+// The values a number or integer control admits, and the words that say so
+// ("must be zero or positive"): the same check and message from Lua and C++.
+struct ControlRange {
+  double min = -1e308, max = 1e308;
+  bool min_open = false, max_open = false;  // min < v (else min ≤ v); v < max (else v ≤ max)
+  const char* rule = "";
+  bool admits(double v) const { return (min_open ? v > min : v >= min) && (max_open ? v < max : v <= max); }
+};
+
+struct ControlSpec {
+  const char* name;  // in Lua and in the docs
+  ControlType type;
+  const char* doc;                       // the docs' "meaning" column (Markdown)
+  const char* default_text;              // the docs' default column, or nullptr: the value as written by value_text
+  ControlRange range;                    // Number, Integer
+  std::span<const char* const> choices;  // Choice: the names, in the enum's order
+  // Access to the field, by type (one is set).
+  double& (*number)(Controls&);
+  int& (*integer)(Controls&);
+  bool& (*flag)(Controls&);
+  Vec2& (*vector)(Controls&);
+  int (*get_choice)(const Controls&);
+  void (*set_choice)(Controls&, int);
+
+  // The rule c breaks ("must be positive"), or nullptr when c's value passes.
+  const char* violated(const Controls& c) const;
+  // The value as Lua writes it: 0.4, 20, true, "stress", {0, -9.81}.
+  std::string value_text(const Controls& c) const;
+  // The choice named `name` (-1: none); the choices as "\"a\", \"b\" or \"c\"".
+  int find_choice(std::string_view name) const;
+  std::string choice_list() const;
+};
+
+// Every control, in the order Lua lists them.
+std::span<const ControlSpec> control_specs();
+const ControlSpec* find_control(std::string_view name);
+
+// Throws dda::Error naming the first control out of its range.
+void validate_controls(const Controls& c);
+
+// The controls table of docs/scripting.md (header, separator, one row each).
+std::string controls_markdown_table();
+
+}  // namespace dda

@@ -1,0 +1,60 @@
+#pragma once
+// The stages of a step, and what a step reports: its counts and a profile of
+// seconds per stage (Box2D v3's b2Profile). Adding a stage adds an entry to
+// Stage and kStageKeys; Lua's m:stats() shows it as t_<key>.
+#include <array>
+#include <chrono>
+#include <string>
+
+namespace dda {
+
+enum class Stage {
+  DetectContacts,  // broad and narrow phase, or the reused list's linearisation
+  PredictStates,   // warm start and the open-close iteration's first guess
+  Assemble,        // block terms, loads and boundaries, contact rows
+  Solve,           // the linear solver (its setup included)
+  CheckContacts,   // the open-close decision
+  ControlStep,     // motion checks, accept or cut Δt and redo
+  Update,          // move blocks, points and contacts; advance time
+};
+inline constexpr int kStageCount = 7;
+// Short names, in Stage order (m:stats() fields t_detect, t_predict, ...).
+inline constexpr std::array<const char*, kStageCount> kStageKeys{"detect", "predict", "assemble", "solve",
+                                                                 "check",  "control", "update"};
+
+struct StepProfile {
+  std::array<double, kStageCount> seconds{};  // per stage, redone attempts included
+  double total = 0;                           // the whole step, wall clock
+  double& operator[](Stage s) { return seconds[static_cast<int>(s)]; }
+  double operator[](Stage s) const { return seconds[static_cast<int>(s)]; }
+};
+
+// Adds the seconds from its construction to its destruction to a stage.
+class StageTimer {
+ public:
+  StageTimer(StepProfile& profile, Stage stage) : into_(profile[stage]), start_(std::chrono::steady_clock::now()) {}
+  ~StageTimer() { into_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count(); }
+  StageTimer(const StageTimer&) = delete;
+  StageTimer& operator=(const StageTimer&) = delete;
+
+ private:
+  double& into_;
+  std::chrono::steady_clock::time_point start_;
+};
+
+// One step, including redone attempts.
+struct StepStats {
+  double dt = 0;
+  int open_close_iterations = 0;  // one solve each
+  int cg_iterations = 0;          // over all rows
+  int patch_iterations = 0;       // confined to the patch of a re-solve (PcgSettings::patch_hops)
+  int step_cuts = 0;
+  std::string cut_reason;  // why the last cut was made ("" when none), with the block when one is to blame
+  int contacts = 0;
+  int closed_contacts = 0;
+  bool contacts_searched = false;     // a full contact search ran (else the list was reused)
+  double max_displacement_ratio = 0;  // largest vertex displacement / (g2 bound)
+  StepProfile profile;
+};
+
+}  // namespace dda

@@ -1,0 +1,360 @@
+// The DDA time step as its table of contents (as Box2D v3's b2World_Step):
+//
+//   step
+//   ├─ check_new_model       once per set of blocks: no overlaps, the g2 length
+//   ├─ begin_step            validate controls; derive automatic g0, g1;
+//   │                        threads; material constants; the solve regime
+//   │                        (solve_regime.hpp) and the linear solver
+//   ├─ DetectContacts        contact/contact_detection: search or reuse the list
+//   ├─ attempt, until one is accepted:
+//   │  ├─ Assemble           assembly/block_terms, loading/, boundary/ at t + Δt
+//   │  ├─ PredictStates      warm start; first guess of the contact states
+//   │  ├─ open-close loop, until no contact changes state:
+//   │  │  ├─ Assemble        assembly/contact_terms: rows of the changed contacts
+//   │  │  ├─ Solve           solver/: the LinearSolver (PCG today)
+//   │  │  └─ CheckContacts   contact/open_close: open, sliding, locked
+//   │  └─ ControlStep        block/motion: g2 bound, contact range, inverted
+//   │                        blocks, penetration → accept, or cut Δt (or widen
+//   │                        the contact range) and redo (step_control.hpp)
+//   └─ Update                block/motion, loading/, boundary/, contacts; Δt
+//                            grows back after a clean step
+//
+// Each stage is timed into StepStats::profile (step_profile.hpp). Where the
+// next changes land:
+//   * a time integrator (Newmark, generalized-α): block/time_scheme.hpp, the
+//     one place that says how inertia, dashpots, the warm start and the
+//     velocity update follow from the step displacement; state it keeps is
+//     written in Update only, so a redone attempt finds it untouched;
+//   * an energy budget: each stage's work terms next to its timer (the
+//     block terms, loads, boundaries and contact forces are all in hand
+//     after the accepted solve, before Update);
+//   * contact transfer and friction: contact/ (detection carries states
+//     over by identity; open_close.cpp decides states with contact_law.cpp);
+//     what a redo restores is save/restore_contact_states;
+//   * a direct solver: solver/ only (linear_solver.hpp says how).
+#include "world/stepper.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "assembly/contact_terms.hpp"
+#include "contact/broad_phase.hpp"
+#include "core/error.hpp"
+#include "core/parallel.hpp"
+#include "geometry/polygon.hpp"
+
+namespace dda {
+
+StepStats Stepper::step(WorldState& w) {
+  const auto t_start = std::chrono::steady_clock::now();
+  if (!w.prepared) check_new_model(w);
+  begin_step(w);
+  arena_->execute([&] {
+    detect_contacts(w);
+    {
+      StageTimer timer(stats_.profile, Stage::ControlStep);
+      save_contact_states(w.contacts, open_close_);
+    }
+    for (;;) {
+      const Rejection r = attempt(w);
+      if (r == Rejection::None) break;
+      control_step(w, r);
+    }
+    update(w);
+  });
+  finish_step(w);
+  stats_.profile.total = std::chrono::duration<double>(std::chrono::steady_clock::now() - t_start).count();
+  w.last_stats = stats_;
+  return stats_;
+}
+
+// ---- Once per set of blocks ---------------------------------------------------
+
+void Stepper::check_new_model(WorldState& w) {
+  const Blocks& blocks = w.blocks;
+  if (blocks.count() == 0) throw Error("the model has no blocks");
+
+  // Blocks must not overlap at the start: a crossing of two edges, or a
+  // vertex inside another block, is a modelling error.
+  // Edges that merely touch, computed with round-off (cos/sin), are not
+  // crossings: a crossing must go deeper than 1e-9 of the blocks' size.
+  const BlockPolygons polys = blocks.polygons();
+  for (const auto& [a, b] : find_candidate_pairs(polys, 0.0)) {
+    const auto pa = polys.of(a), pb = polys.of(b);
+    const double tol = 1e-9 * std::sqrt(std::min(blocks.area[a], blocks.area[b]));
+    for (std::size_t i = 0; i < pa.size(); ++i)
+      for (std::size_t j = 0; j < pb.size(); ++j)
+        if (segments_cross_clearly(pa[i], pa[(i + 1) % pa.size()], pb[j], pb[(j + 1) % pb.size()], tol))
+          throw Error(msg("blocks ", a, " and ", b, " overlap at the start (edge ", i + 1, " of block ", a,
+                          " crosses edge ", j + 1, " of block ", b, ")"));
+    auto vertex_inside = [&](std::span<const Vec2> p, std::span<const Vec2> q, int pb_id, int qb_id) {
+      const double size = std::sqrt(std::abs(signed_area(q)));
+      for (std::size_t i = 0; i < p.size(); ++i) {
+        if (!point_in_polygon(q, p[i])) continue;
+        double depth = INFINITY;  // distance to q's boundary
+        for (std::size_t j = 0; j < q.size(); ++j) {
+          const Vec2 e = q[(j + 1) % q.size()] - q[j];
+          const double t = std::clamp((p[i] - q[j]).dot(e) / e.squaredNorm(), 0.0, 1.0);
+          depth = std::min(depth, (p[i] - (q[j] + t * e)).norm());
+        }
+        if (depth > 1e-9 * size)
+          throw Error(msg("blocks ", pb_id, " and ", qb_id, " overlap at the start (vertex ", i + 1, " of block ",
+                          pb_id, " lies inside block ", qb_id, ")"));
+      }
+    };
+    vertex_inside(pa, pb, a, b);
+    vertex_inside(pb, pa, b, a);
+  }
+  w.half_height = w.measured_half_height();
+  if (!(w.half_height > 0)) throw Error("the model has no height (all vertices on one horizontal line)");
+  detection_.start_automatic_range(blocks);
+  w.prepared = true;
+}
+
+// ---- begin_step ---------------------------------------------------------------
+
+void Stepper::begin_step(WorldState& w) {
+  stats_ = StepStats{};
+  validate_controls(w.controls);
+  for (int r = 0; r < static_cast<int>(w.rocks.size()); ++r) validate(w.rocks[r], r);
+  for (int j = 0; j < static_cast<int>(w.joints.size()); ++j) validate(w.joints[j], j);
+  derive_automatic_controls(w);
+  set_up_threads(w.controls);
+  derive_material_constants(w);
+  regime_ = SolveRegime::choose(w.controls, w.last_stats);
+  set_up_solver(w);
+}
+
+// g0 = 50 × the largest E and g1 from Eqs. 1–3 where the controls say 0
+// (automatic); Δt starts at g1 and never exceeds it.
+void Stepper::derive_automatic_controls(WorldState& w) {
+  const Controls& c = w.controls;
+  double e_max = 0;
+  for (const RockMaterial& r : w.rocks) e_max = std::max(e_max, r.youngs);
+  g0_ = c.g0 > 0 ? c.g0 : 50 * e_max;
+  g1_ = c.g1 > 0 ? c.g1 : w.suggested_time_step();
+  if (w.dt <= 0 || w.dt > g1_) w.dt = g1_;
+}
+
+void Stepper::set_up_threads(const Controls& c) {
+  if (arena_threads_ != c.threads || !arena_) {
+    arena_ = c.threads > 0 ? std::make_unique<tbb::task_arena>(c.threads) : std::make_unique<tbb::task_arena>();
+    arena_threads_ = c.threads;
+  }
+}
+
+void Stepper::derive_material_constants(const WorldState& w) {
+  const Controls& c = w.controls;
+  elastic_.resize(w.rocks.size());
+  for (std::size_t r = 0; r < w.rocks.size(); ++r) elastic_[r] = elastic_matrix(w.rocks[r], c.plane);
+  tan_friction_.resize(w.joints.size());
+  for (std::size_t j = 0; j < w.joints.size(); ++j) tan_friction_[j] = std::tan(deg_to_rad(w.joints[j].friction_deg));
+  contact_law_ = {g0_, c.shear_ratio, c.contact_tolerance * w.half_height, w.joints, tan_friction_};
+  scheme_.gg = c.gg;
+}
+
+// The linear solver, told once per step what the step's solves are like.
+void Stepper::set_up_solver(const WorldState& w) {
+  const Controls& c = w.controls;
+  if (!solver_) solver_ = make_linear_solver(c.solver);
+  StepSolveInfo info;
+  info.blocks = static_cast<int>(w.blocks.count());
+  info.block_centroids = w.blocks.centroid;
+  info.local_resolves = regime_.local_resolves;
+  info.last_step_solves = w.last_stats.open_close_iterations;
+  info.last_step_iterations = w.last_stats.cg_iterations;
+  solver_->begin_step(c.solver, info);
+  solver_->max_iterations =
+      c.cg_max_iterations > 0 ? c.cg_max_iterations : static_cast<int>(60 * w.blocks.count() + 100);
+  system_.store_products(regime_.stored_products);
+}
+
+// ---- DetectContacts -----------------------------------------------------------
+
+void Stepper::detect_contacts(WorldState& w) {
+  StageTimer timer(stats_.profile, Stage::DetectContacts);
+  const Controls& c = w.controls;
+  const double range = detection_.range(c.contact_range, 2.5 * c.g2 * w.half_height);
+  if (detection_.detect(w.blocks, range, w.contacts, linearisation_)) {
+    stats_.contacts_searched = true;
+    // The system's rows: which contacts couple which blocks.
+    system_.set_contacts(static_cast<int>(w.blocks.count()), w.contacts);
+  }
+}
+
+// ---- One attempt at the step --------------------------------------------------
+
+Rejection Stepper::attempt(WorldState& w) {
+  scheme_.dt = w.dt;
+  assemble_own_terms(w);
+  predict(w);
+  if (const Rejection r = open_close(w); r != Rejection::None) return r;
+  return check_motion(w);
+}
+
+// The blocks' own terms, loads and boundaries: once per attempt (they do not
+// depend on the contact states). Histories are evaluated at the end of the
+// step, t + Δt.
+void Stepper::assemble_own_terms(WorldState& w) {
+  StageTimer timer(stats_.profile, Stage::Assemble);
+  const Controls& c = w.controls;
+  const double t_end = w.time + w.dt;
+  assemble_block_terms(w.blocks, elastic_, c.gravity, scheme_, own_);
+  w.loads.add_terms(t_end, w.blocks, own_);
+  w.boundaries.add_terms(t_end, c.fixed_point_factor * g0_, w.blocks, scheme_, own_);
+}
+
+// The warm start and the open-close iteration's first guess (solve_regime.hpp).
+void Stepper::predict(WorldState& w) {
+  StageTimer timer(stats_.profile, Stage::PredictStates);
+  start_open_close(w.contacts, linearisation_, open_close_);
+  const Blocks& blocks = w.blocks;
+  solution_.resize(6 * static_cast<Eigen::Index>(blocks.count()));
+  parallel_for_each(
+      blocks.count(),
+      [&](std::size_t b) {
+        solution_.segment<6>(6 * b) =
+            regime_.extrapolate_warm_start
+                ? scheme_.extrapolated_displacement(blocks.velocity[b], blocks.last_displacement[b])
+                : blocks.last_displacement[b];
+      },
+      256);
+  if (regime_.predict_states) predict_contact_states(w.contacts, linearisation_, solution_, contact_law_, open_close_);
+}
+
+// loop { Assemble → Solve → CheckContacts } until no contact changes state.
+// Solves while states change stop at the regime's open-close tolerance; once
+// the states hold, a tightening pass (which does not count against the
+// open-close limit) solves to the accepted tolerance and checks again.
+// (Friction on sliding contacts uses the normal force of the solve before,
+// as in Shi's iteration: after a tightening pass that is the loose solve with
+// the same states, a smaller lag than after a solve whose states then
+// changed.)
+Rejection Stepper::open_close(WorldState& w) {
+  const Controls& c = w.controls;
+  const int n = static_cast<int>(w.blocks.count());
+  bool tightening = false;
+  bool first_solve = true;
+  for (int it = 0; it < c.open_close_limit; ++it) {
+    ++stats_.open_close_iterations;
+    solver_->tolerance = tightening ? regime_.accept_tolerance : regime_.open_close_tolerance;
+    {
+      StageTimer timer(stats_.profile, Stage::Assemble);
+      assemble_contact_rows(w.contacts, linearisation_, open_close_, contact_law_, own_,
+                            /*all_rows=*/it == 0 && !tightening, system_, rhs_, row_reassembled_);
+    }
+    SolveReport report;
+    {
+      StageTimer timer(stats_.profile, Stage::Solve);
+      solver_->set_operator(system_);
+      // After the first solve only the reassembled rows changed: the solver
+      // keeps the last residual elsewhere.
+      report = first_solve ? solver_->solve(rhs_, solution_) : solver_->resolve(rhs_, solution_, row_reassembled_);
+      first_solve = false;
+    }
+    stats_.cg_iterations += report.iterations;
+    stats_.patch_iterations += report.patch_iterations;
+    if (!report.finite || !solution_.allFinite()) {
+      // Name the first block whose load or displacement is not finite.
+      for (int b = 0; b < n; ++b)
+        if (!rhs_.segment<6>(6 * b).allFinite() || !solution_.segment<6>(6 * b).allFinite())
+          throw Error(msg("step ", w.steps + 1, " at t = ", w.time, " s diverged: block ", b, " has a non-finite ",
+                          rhs_.segment<6>(6 * b).allFinite() ? "displacement" : "load",
+                          " (check material constants, loads, g0 and the time step)"));
+      throw Error(
+          msg("step ", w.steps + 1, " at t = ", w.time, " s diverged: the linear solve produced non-finite values"));
+    }
+    if (!report.converged) return Rejection::SolverNotConverged;
+
+    bool changed = false;
+    {
+      StageTimer timer(stats_.profile, Stage::CheckContacts);
+      changed = check_contact_states(w.contacts, linearisation_, solution_, contact_law_, open_close_);
+    }
+    if (changed) {
+      tightening = false;
+    } else if (solver_->tolerance == regime_.accept_tolerance) {
+      return Rejection::None;  // settled
+    } else {
+      tightening = true;
+      --it;  // the tightening pass is free
+    }
+  }
+  return Rejection::OpenCloseUnsettled;
+}
+
+// ---- ControlStep --------------------------------------------------------------
+
+// The settled solve's motion against the g2 bound and the contact range, and
+// its blocks and contacts against inversion and deep penetration.
+Rejection Stepper::check_motion(const WorldState& w) {
+  StageTimer timer(stats_.profile, Stage::ControlStep);
+  const Controls& c = w.controls;
+  const double bound = c.g2 * w.half_height;
+  motion_ = check_block_motion(w.blocks, solution_, block_inverted_, vertex_motion_);
+  if (motion_.largest_displacement > bound) return Rejection::DisplacementTooLarge;
+  const double range = detection_.range(c.contact_range, 2.5 * c.g2 * w.half_height);
+  if (motion_.largest_displacement > range / 2.5) return Rejection::BeyondContactRange;
+  if (motion_.inverted_block >= 0) return Rejection::BlockInverted;
+  if (deepest_penetration(w.contacts) > bound) return Rejection::PenetrationTooDeep;
+  return Rejection::None;
+}
+
+// A rejected attempt: widen the automatic contact range past the step's
+// motion, search again and redo with the same Δt (the range only widens: this
+// ends at Shi's range, which the g2 bound already guarantees); otherwise cut
+// Δt and redo, up to max_step_cuts times.
+void Stepper::control_step(WorldState& w, Rejection r) {
+  const Controls& c = w.controls;
+  if (r == Rejection::BeyondContactRange && c.contact_range == 0) {
+    detection_.widen_automatic_range(motion_.largest_displacement);
+    {
+      StageTimer timer(stats_.profile, Stage::ControlStep);
+      restore_contact_states(w.contacts, open_close_);
+    }
+    detect_contacts(w);
+    StageTimer timer(stats_.profile, Stage::ControlStep);
+    save_contact_states(w.contacts, open_close_);
+    return;
+  }
+  StageTimer timer(stats_.profile, Stage::ControlStep);
+  stats_.cut_reason =
+      msg(describe(r), r == Rejection::BlockInverted ? msg(" (block ", motion_.inverted_block, ")") : std::string());
+  if (stats_.step_cuts == c.max_step_cuts)
+    throw Error(
+        msg("step ", w.steps + 1, " at t = ", w.time, " s: ", stats_.cut_reason, " even after ", stats_.step_cuts,
+            " cuts of the time step (down to ", w.dt, " s). ",
+            r == Rejection::PenetrationTooDeep ? "Raise g0 (contact stiffness) or g2." : "Check loads, g0 and g2."));
+  ++stats_.step_cuts;
+  restore_contact_states(w.contacts, open_close_);
+  w.dt *= c.cut_factor;
+}
+
+// ---- Update -------------------------------------------------------------------
+
+// The accepted step: material points first (they move with their block's old
+// centroid), then the blocks, then what the contacts keep; time advances.
+void Stepper::update(WorldState& w) {
+  StageTimer timer(stats_.profile, Stage::Update);
+  const Blocks& blocks = w.blocks;
+  w.loads.move_points(blocks, solution_);
+  w.boundaries.update(blocks, solution_, scheme_);
+  move_material_points(w.tracked, blocks, solution_);
+  move_blocks(w.blocks, solution_, vertex_motion_, elastic_, scheme_);
+  detection_.add_rotations(solution_);
+  keep_shear_references(w.contacts, linearisation_, open_close_);
+  w.time += w.dt;
+  ++w.steps;
+}
+
+// The step's figures; after a clean step Δt grows back towards g1.
+void Stepper::finish_step(WorldState& w) {
+  stats_.dt = w.dt;
+  stats_.max_displacement_ratio = motion_.largest_displacement / (w.controls.g2 * w.half_height);
+  if (stats_.step_cuts == 0) w.dt = std::min(g1_, w.dt * 1.5);
+  stats_.contacts = static_cast<int>(w.contacts.size());
+  stats_.closed_contacts = static_cast<int>(std::count_if(
+      w.contacts.begin(), w.contacts.end(), [](const Contact& c) { return c.state != ContactState::Open; }));
+}
+
+}  // namespace dda

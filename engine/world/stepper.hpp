@@ -1,0 +1,77 @@
+#pragma once
+// The DDA time step. A Stepper advances a WorldState by one step and owns
+// everything the step needs besides the model itself: resolved controls, the
+// contact list's search state, the system, the linear solver and the scratch
+// reused from step to step (so that the step loop does not allocate).
+// stepper.cpp opens with the step as its table of contents.
+#include <tbb/task_arena.h>
+
+#include <memory>
+#include <vector>
+
+#include "assembly/block_terms.hpp"
+#include "assembly/contact_operator.hpp"
+#include "block/motion.hpp"
+#include "block/time_scheme.hpp"
+#include "contact/contact_detection.hpp"
+#include "contact/open_close.hpp"
+#include "solver/linear_solver.hpp"
+#include "world/solve_regime.hpp"
+#include "world/step_control.hpp"
+#include "world/world_state.hpp"
+
+namespace dda {
+
+class Stepper {
+ public:
+  StepStats step(WorldState& w);
+
+  // The system of the last open-close iteration (A·D = F).
+  const ContactOperator& system() const { return system_; }
+  const VecX& rhs() const { return rhs_; }
+
+ private:
+  // The stages, in the order step() runs them.
+  void check_new_model(WorldState& w);
+  void begin_step(WorldState& w);
+  void derive_automatic_controls(WorldState& w);
+  void set_up_threads(const Controls& c);
+  void derive_material_constants(const WorldState& w);
+  void set_up_solver(const WorldState& w);
+  void detect_contacts(WorldState& w);
+  Rejection attempt(WorldState& w);
+  void assemble_own_terms(WorldState& w);
+  void predict(WorldState& w);
+  Rejection open_close(WorldState& w);
+  Rejection check_motion(const WorldState& w);
+  void control_step(WorldState& w, Rejection r);
+  void update(WorldState& w);
+  void finish_step(WorldState& w);
+
+  // Set once per step by begin_step.
+  double g0_ = 0, g1_ = 0;  // resolved (automatic values filled in)
+  std::unique_ptr<tbb::task_arena> arena_;
+  int arena_threads_ = -1;
+  SolveRegime regime_;
+  std::vector<Mat3> elastic_;         // per rock material
+  std::vector<double> tan_friction_;  // tan φ per joint material
+  ContactParameters contact_law_;
+  TimeScheme scheme_;  // Δt set by each attempt
+
+  // Kept from step to step.
+  ContactDetection detection_;
+  ContactLinearisation linearisation_;  // per contact
+  OpenCloseState open_close_;           // per contact
+  ContactOperator system_;              // the matrix of the step, matrix-free off the diagonal
+  std::unique_ptr<LinearSolver> solver_;
+  BlockTerms own_;  // per block
+  VecX rhs_, solution_;
+  std::vector<char> row_reassembled_;  // per block row: rewritten by the last assembly
+  std::vector<char> block_inverted_;   // per block (check_block_motion's scratch)
+  std::vector<Vec2> vertex_motion_;    // per vertex: the last checked solve's motion
+  MotionCheck motion_;                 // of the last attempt that got to its motion checks
+
+  StepStats stats_;  // of the step under way
+};
+
+}  // namespace dda

@@ -1,0 +1,41 @@
+#pragma once
+// What a World is: its controls, materials, blocks, loads, boundaries,
+// followed points, contacts and clock. The World's methods build and read it;
+// the Stepper (stepper.hpp) advances it one step at a time.
+#include <vector>
+
+#include "block/blocks.hpp"
+#include "boundary/boundaries.hpp"
+#include "contact/contact.hpp"
+#include "core/material.hpp"
+#include "loading/loads.hpp"
+#include "world/controls.hpp"
+#include "world/step_profile.hpp"
+
+namespace dda {
+
+struct WorldState {
+  Controls controls;
+  std::vector<RockMaterial> rocks;
+  std::vector<JointMaterial> joints;
+  Blocks blocks;
+  Loads loads;
+  Boundaries boundaries;
+  std::vector<MaterialPoint> tracked;  // followed through the run (for monitors)
+  std::vector<Contact> contacts;
+
+  double time = 0;
+  long steps = 0;
+  double dt = 0;           // the next step's Δt (0: not yet chosen)
+  double half_height = 0;  // the g2 reference length, fixed by the first step's checks (0: not yet)
+  bool prepared = false;   // the first-step checks ran on these blocks
+  StepStats last_stats;
+
+  // Half the y extent of the blocks as they are now.
+  double measured_half_height() const;
+  // Δt from the paper's Eqs. 1–3 with a = 0.05 and b = 0.177:
+  // min(a·h_min/C_P, 2b·sqrt(m_min/g0)).
+  double suggested_time_step() const;
+};
+
+}  // namespace dda
