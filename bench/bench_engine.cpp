@@ -1,4 +1,4 @@
-// Engine step benchmark: the C++ core of the issue-8 benchmark command.
+// Engine step benchmark in C++ (the benchmark table itself is scripts/bench/run.sh).
 //
 //   ./build/bench/bench_engine                       # wall(10,20,40); 1 and 2 threads
 //   ./build/bench/bench_engine --scenes wall10,wall40 --threads 2 --pre bj,mg

@@ -1,4 +1,4 @@
-// Rendering from Lua (render/, issue 6), when the renderer is built:
+// Rendering from Lua (render/), when the renderer is built:
 //   m:frame{file = "t.png", field = "sigma_xx", ...}     one frame now
 //   m:frames{folder = "frames", every = 10, ...}         a numbered sequence during the run (dda.Frames)
 //   dda.plot{file = "p.png", series = {...}, ...}        a line plot of histories

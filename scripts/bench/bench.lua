@@ -6,9 +6,8 @@
 --          blast(0.5)@2500: timed after 2500 steps); --set pre=block_jacobi|multigrid
 --          forces a preconditioner (default: the scene's, auto); --set
 --          predict=false starts open-close iterations from the last step's
---          contact states (predict_states = false: the engine before
---          2026-11-22 23:50); --set patch=0 re-solves over all rows only
---          (patch_hops = 0: the engine before 2026-11-23 01:40), --set patch=N
+--          contact states (predict_states = false); --set patch=0 re-solves
+--          over all rows only (patch_hops = 0), --set patch=N
 --          patches of N couplings.
 -- Run:     build/dda run scripts/bench/bench.lua --set scene=wall --set n=20 --set threads=2 [--set csv=FILE]
 --          (scripts/bench/run.sh runs the whole table, one process per row so

@@ -1,14 +1,20 @@
 #!/usr/bin/env bash
-# The benchmark table of issue 8: every scene with 1 and 2 threads, one dda
-# process per row (so each row's peak memory is its own), saved as CSV in
-# bench/results/ with the machine's description.
-#   scripts/bench/run.sh            # the default table (about 35 minutes)
-#   SCENES="wall:10 bar" scripts/bench/run.sh
-#   SCENES="wall:200:3" scripts/bench/run.sh   # a third field: timed steps (default 10)
+# The engine benchmark table: every scene with 1 and 2 threads, one dda
+# process per row (so each row's peak memory is its own), as CSV with the
+# machine's description on its first line.
+#   scripts/bench/run.sh            # the default table (about 35 minutes), written to
+#                                   # bench/results/<machine>.csv, overwriting it
+#   SCENES="wall:10 bar" scripts/bench/run.sh    # chosen scenes: the table on stdout
+#   SCENES="wall:200:3" scripts/bench/run.sh     # a third field: timed steps (default 10)
 #   SCENES="blast:0.5:50:2500" scripts/bench/run.sh   # a fourth: untimed steps first (default 2);
 #                                                     # the row's scene is then blast(0.5)@2500
 #   REPEAT=3 SCENES="blast:0.5" scripts/bench/run.sh
-#   OUT_DIR=/tmp/tables scripts/bench/run.sh   # elsewhere than bench/results
+#   OUT=/tmp/table.csv scripts/bench/run.sh      # the table to that file instead
+#
+# <machine> is the CPU model from /proc/cpuinfo and the core count, e.g.
+# amd-epyc-2c: one file per machine for the default scene set, overwritten,
+# so git holds its history. Chosen scenes never overwrite it. Progress
+# goes to stderr.
 #
 # REPEAT=N runs each row N times and keeps the run with the median ms per
 # step; the last columns give the number of runs and the fastest and slowest
@@ -21,19 +27,28 @@ dda=${DDA:-build/dda}
 repeat=${REPEAT:-1}
 [[ $repeat =~ ^[1-9][0-9]*$ ]] || { echo "run.sh: REPEAT must be a positive integer (got '$repeat')" >&2; exit 2; }
 # blast:2:5000 times the paper's whole 0.05 s (5000 steps of 1e-5 s after 2
-# untimed ones): issue 8's target is that run under 15 s. blast:2:50:2500 and
-# blast:0.5:50:2500 time steps 2501-2550, late in the run where most joints
-# slide: the early-step rows alone would hide what a whole run costs.
-scenes=${SCENES:-"wall:10 wall:20 wall:40 wall:100:5 wall:200:3 blast:2:5000 blast:2:50:2500 blast:1 blast:0.5 blast:0.5:50:2500 blast:0.25:5 bar"}
-out_dir=${OUT_DIR:-bench/results}
-mkdir -p "$out_dir"
-out="$out_dir/$(date -u +%Y%m%d-%H%M%S)-$(hostname -s).csv"
+# untimed ones). blast:2:50:2500 and blast:0.5:50:2500 time steps 2501-2550,
+# late in the run where most joints slide: the early-step rows alone would
+# hide what a whole run costs.
+default_scenes="wall:10 wall:20 wall:40 wall:100:5 wall:200:3 blast:2:5000 blast:2:50:2500 blast:1 blast:0.5 blast:0.5:50:2500 blast:0.25:5 bar"
+scenes=${SCENES:-$default_scenes}
+cpu=$(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ *//')
+machine=$(echo "$cpu" | sed -E 's/\((R|TM|tm)\)//g; s/ (CPU|Processor)\b//g; s/@.*//' | tr 'A-Z' 'a-z' | tr -cs 'a-z0-9' '-' | sed 's/^-*//; s/-*$//')-$(nproc)c
+if [[ -n ${OUT:-} ]]; then
+  out=$OUT
+elif [[ $scenes == "$default_scenes" ]]; then
+  out=bench/results/$machine.csv
+else
+  out=/dev/stdout
+fi
+[[ $out == /dev/stdout ]] || mkdir -p "$(dirname "$out")"
+table=$(mktemp)
 {
-  echo "# machine: $(nproc) cores, $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ *//'), $(free -g | awk '/Mem:/{print $2}') GiB; commit $(git rev-parse --short HEAD 2>/dev/null || echo '?'); runs per row $repeat (median kept)"
+  echo "# machine: $machine ($(nproc) cores, $cpu, $(free -g | awk '/Mem:/{print $2}') GiB); commit $(git rev-parse --short HEAD 2>/dev/null || echo '?'); runs per row $repeat (median kept)"
   echo "scene,threads,blocks,contacts,steps,ms_per_step,block_steps_per_s,oc_per_step,cg_per_step,cuts,detect_share,assemble_share,solve_share,update_share,other_share,peak_rss_mb,patch_per_step,runs,ms_min,ms_max"
-} > "$out"
+} > "$table"
 runs=$(mktemp -d)
-trap 'rm -rf "$runs"' EXIT
+trap 'rm -rf "$runs" "$table"' EXIT
 for s in $scenes; do
   IFS=: read -r name arg steps skip <<< "$s"
   case $name in
@@ -46,7 +61,7 @@ for s in $scenes; do
   rm -f "$runs"/*.csv
   for ((r = 1; r <= repeat; ++r)); do
     for t in 1 2; do
-      "$dda" run scripts/bench/bench.lua --quiet --out /tmp "${args[@]}" --set threads=$t --set csv="$runs/$t.csv"
+      "$dda" run scripts/bench/bench.lua --quiet --out /tmp "${args[@]}" --set threads=$t --set csv="$runs/$t.csv" >&2
     done
   done
   for t in 1 2; do
@@ -54,7 +69,13 @@ for s in $scenes; do
     # of the middle two.
     sort -t, -k6,6g "$runs/$t.csv" | awk -F, -v n="$repeat" '
       { ms[NR] = $6; row[NR] = $0 }
-      END { printf "%s,%d,%s,%s\n", row[int((n + 1) / 2)], n, ms[1], ms[n] }' >> "$out"
+      END { printf "%s,%d,%s,%s\n", row[int((n + 1) / 2)], n, ms[1], ms[n] }' >> "$table"
   done
 done
-echo "table saved to $out"
+# Written only once every row is done: an interrupted run keeps the last table.
+if [[ $out == /dev/stdout ]]; then
+  cat "$table"
+else
+  cp "$table" "$out"
+  echo "table saved to $out" >&2
+fi

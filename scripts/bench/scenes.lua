@@ -1,4 +1,4 @@
--- scenes.lua: the benchmark scenes of issue 8, as a module (no run).
+-- scenes.lua: the benchmark scenes, as a module (no run).
 --
 -- Models:  wall(N)   quasi-static brick wall: N columns of 1 m x 0.5 m bricks,
 --                    2N rows in running bond (half bricks at alternate row ends),
@@ -7,10 +7,7 @@
 --                    cohesion or tension, gravity, dt = 1e-3 s, g2 = 0.001,
 --                    g0 = 50E, open-close limit 8. N = 10, 20, 40 give 211, 821
 --                    and 3,241 blocks. Quasi-static as in Shi's static analysis:
---                    no velocity is carried into the next step (gg = 0). (The
---                    tables in bench/results before 20261122-215514 ran the walls
---                    with gg = 1: wall(40) then took 5.5 open-close iterations per
---                    step in its first steps against 3.3, and about 15 % longer.)
+--                    no velocity is carried into the next step (gg = 0).
 --          blast(h)  the paper's Section 4 model (100 m square, sets at 45 and
 --                    135 deg with spacing h, chamber, DHI load on the chamber wall,
 --                    blocks under 0.01 h^2 merged into a neighbour).

@@ -296,7 +296,7 @@ elseif figure == "14a" then
 elseif figure == "14b" then
   local res = {}
   for _, load in ipairs{ "dhi", "shi" } do
-    -- sigma_yy frames every 1 ms of the DHI run (issue 7), unless --set frames says otherwise
+    -- sigma_yy frames every 1 ms of the DHI run (the paper's Fig. 14b), unless --set frames says otherwise
     local frames = (load == "dhi" and P.frames == 0) and 1e-3 or P.frames
     local r = run_case(cfg_with{ size = 100, load = load, boundary = "fixed", frames = frames })
     r.label = string.format("%s (PPV %.3f)", load:upper(), r.MP1)

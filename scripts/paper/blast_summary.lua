@@ -244,7 +244,7 @@ local function measure(S)
   row("fig18", "PPV/Eq. 23 at the farthest point", nil, line and line[#line].ratio, "-", sbc, why18,
       "above 1 (in words)")
 
-  -- targets of the issue; when a number they need is missing, the result says
+  -- the Section 4 targets; when a number they need is missing, the result says
   -- which and why (needs: the rows the target reads)
   local function target(text, met, result, needs)
     local miss = {}

@@ -165,7 +165,7 @@ for _, fig in ipairs(figs) do
     w("")
   end
   if #fig.passes + #fig.failures > 0 then
-    w("Targets (issue 5):")
+    w("Targets:")
     w("")
     for _, t in ipairs(fig.passes) do w("- PASS: " .. t); all_pass[#all_pass + 1] = fig.name .. ": " .. t end
     for _, t in ipairs(fig.failures) do w("- **FAIL**: " .. t); all_fail[#all_fail + 1] = fig.name .. ": " .. t end

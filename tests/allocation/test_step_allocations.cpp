@@ -1,8 +1,8 @@
 // A step that neither searches for contacts nor cuts Δt allocates no memory:
 // its buffers (contact iteration states, the system, the PCG's vectors and
-// patches, the partial sums) are sized once and reused (issue 8: "no
-// allocation in the step loop"). A step allocating on the heap does not
-// fail, it only gets slower; this suite counts the calls instead.
+// patches, the partial sums) are sized once and reused. A step allocating on
+// the heap does not fail, it only gets slower; this suite counts the calls
+// instead.
 //
 // Counting: this executable replaces glibc's malloc family with versions that
 // count and forward to glibc's own (__libc_malloc ...), so that operator new,

@@ -1,5 +1,5 @@
 // The aggregation multigrid preconditioner (solver/multigrid.hpp) on systems
-// the engine assembled for the issue-8 brick walls: it must give the direct
+// the engine assembled for the benchmark brick walls: it must give the direct
 // solution, need far fewer CG iterations than block-Jacobi, be a symmetric
 // positive definite operator (or CG is not valid), reuse its hierarchy while
 // the sparsity pattern holds, and give the same bits for any thread count.

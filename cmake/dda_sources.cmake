@@ -1,0 +1,15 @@
+# Every CMakeLists.txt lists its sources by name (no globs: a target's sources
+# are read off its list, and a stray file is not picked up). The opposite
+# mistake, a .cpp file that no list names, would never be compiled (a test
+# file whose tests never run); this check makes it a configure error.
+#   dda_check_sources_listed(<folder> <source>...)  # sources relative to <folder>
+function(dda_check_sources_listed folder)
+  file(GLOB_RECURSE unlisted RELATIVE ${folder} ${folder}/*.cpp)
+  if(ARGN)
+    list(REMOVE_ITEM unlisted ${ARGN})
+  endif()
+  if(unlisted)
+    list(JOIN unlisted ", " names)
+    message(FATAL_ERROR "${folder}: ${names} in no source list; add to ${folder}/CMakeLists.txt (or remove)")
+  endif()
+endfunction()
