@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 
 #include "core/error.hpp"
@@ -41,12 +42,7 @@ std::string field_list() {
   return s;
 }
 
-Monitor::~Monitor() { close(); }
-
-void Monitor::close() {
-  if (file) std::fclose(file);
-  file = nullptr;
-}
+void Monitor::close() { file.close(); }
 
 // ---- model -------------------------------------------------------------------------------
 
@@ -55,10 +51,16 @@ ScriptModel::~ScriptModel() = default;
 
 void ScriptModel::close() {
   hooks_.clear();  // frame sequences finish their queued frames here
-  for (auto& m : monitors_) m->close();
+  std::string failure;
+  for (auto& m : monitors_) try {
+      m->close();
+    } catch (const Error& e) {
+      if (failure.empty()) failure = e.what();
+    }
   loads_.clear();
   pressures_.clear();
   world_.reset();
+  if (!failure.empty()) throw Error(failure);
 }
 
 void ScriptModel::set_domain(std::vector<Vec2> polygon, int rock, int joint) {
@@ -275,17 +277,26 @@ void ScriptModel::record(Monitor& m) {
   m.steps.push_back(step);
   m.times.push_back(t);
   if (m.values.size() != m.fields.size()) m.values.resize(m.fields.size());
-  if (m.file) std::fprintf(m.file, "%ld,%.12g", step, t);
+  char number[64];
+  std::snprintf(number, sizeof number, "%ld,%.12g", step, t);
+  std::string row = number;
   for (std::size_t k = 0; k < m.fields.size(); ++k) {
     const double v = field_value(m, m.fields[k]);
     m.values[k].push_back(v);
-    if (m.file) std::fprintf(m.file, ",%.12g", v);
+    std::snprintf(number, sizeof number, ",%.12g", v);
+    row += number;
   }
-  if (m.file) {
-    // One whole row at a time, flushed: an error or Ctrl-C later keeps every
-    // row written so far readable.
-    std::fputc('\n', m.file);
-    std::fflush(m.file);
+  row += '\n';
+  if (!m.write_error.empty()) throw Error(m.write_error);
+  if (!m.file.is_open()) return;
+  // One whole row at a time, straight to the file: an error, Ctrl-C or a
+  // full disk later keeps every row written so far complete.
+  try {
+    m.file.append(row);
+  } catch (const Error& e) {
+    m.write_error = msg("monitor '", m.name, "': ", e.what());
+    m.file = AppendFile();
+    throw Error(m.write_error);
   }
 }
 

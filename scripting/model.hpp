@@ -21,6 +21,7 @@
 #include "world/cut_blocks.hpp"
 #include "world/world.hpp"
 
+#include "core/output_file.hpp"
 namespace dda::script {
 
 // ---- Monitors -------------------------------------------------------------
@@ -40,12 +41,10 @@ struct Monitor {
   std::vector<long> steps;
   std::vector<double> times;
   std::vector<std::vector<double>> values;  // values[field][row]
-  std::FILE* file = nullptr;
+  AppendFile file;                          // the CSV, one whole row per record (not open: in memory only)
+  std::string write_error;                  // once a row could not be written: every later record raises it again
 
-  Monitor() = default;
-  Monitor(const Monitor&) = delete;
-  Monitor& operator=(const Monitor&) = delete;
-  ~Monitor();
+  // Closes the CSV; throws dda::Error if the system reports a failure.
   void close();
 };
 

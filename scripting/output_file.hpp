@@ -1,18 +1,19 @@
 #pragma once
-// Whole-file outputs (results, sweep tables, VTU and PVD files): written
-// into NAME.part, every write checked, then renamed over NAME, so a reader
-// never sees half a file and a full disk is an error naming the file, never
-// a silent truncation.
+// Outputs of the Lua layer: every file is written through the checked
+// writers of core/output_file.hpp (whole files: write_file_atomically; CSV
+// rows and log lines: AppendFile), so a full disk is an error naming the
+// file, never a silent truncation. CSV fields are quoted here.
 #include <filesystem>
 #include <string>
 #include <string_view>
 #include <vector>
 
+#include "core/output_file.hpp"
+
 namespace dda::script {
 
-// Throws dda::Error "cannot write 'PATH': cause" on any failure (the old
-// file, if any, is left as it was).
-void write_file_atomically(const std::filesystem::path& path, std::string_view text);
+using dda::AppendFile;
+using dda::write_file_atomically;
 
 // A CSV field: as it is, or in double quotes (quotes doubled) when it holds a
 // comma, a quote or a line break.

@@ -2,9 +2,11 @@
 // traceback handler, and `dda run` (batch).
 #include <unistd.h>
 
+#include <cerrno>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <thread>
 
@@ -66,6 +68,95 @@ std::string pop_error(lua_State* L) {
   return e;
 }
 
+// Precompiled bytecode is never loaded: Lua does not verify it, and a
+// corrupted or hostile chunk crashes the interpreter. load, loadfile, dofile
+// and require (its searcher for Lua files) take source text only; the
+// message of a refusal carries the caller's file and line.
+constexpr const char* kBinaryRefused =
+    "binary chunks (precompiled bytecode) are refused: Lua cannot check them and a corrupted one crashes the "
+    "interpreter; give the source text";
+
+bool binary_mode(lua_State* L, int idx) {
+  const char* mode = luaL_optstring(L, idx, "bt");
+  return std::strchr(mode, 't') == nullptr;
+}
+
+// load(chunk [, chunkname [, mode [, env]]]) with mode forced to "t".
+int text_load(lua_State* L) {
+  if (binary_mode(L, 3)) return luaL_error(L, "load: %s", kBinaryRefused);
+  if (lua_gettop(L) < 3) lua_settop(L, 3);
+  lua_pushliteral(L, "t");
+  lua_replace(L, 3);
+  lua_pushvalue(L, lua_upvalueindex(1));
+  lua_insert(L, 1);
+  lua_call(L, lua_gettop(L) - 1, LUA_MULTRET);
+  return lua_gettop(L);
+}
+
+// loadfile([filename [, mode [, env]]]) with mode forced to "t".
+int text_loadfile(lua_State* L) {
+  if (binary_mode(L, 2)) return luaL_error(L, "loadfile: %s", kBinaryRefused);
+  if (lua_gettop(L) < 2) lua_settop(L, 2);
+  lua_pushliteral(L, "t");
+  lua_replace(L, 2);
+  lua_pushvalue(L, lua_upvalueindex(1));
+  lua_insert(L, 1);
+  lua_call(L, lua_gettop(L) - 1, LUA_MULTRET);
+  return lua_gettop(L);
+}
+
+// dofile(filename): as Lua's, text only, and a file that cannot be loaded is
+// an error at the calling line.
+int text_dofile(lua_State* L) {
+  const char* name = luaL_optstring(L, 1, nullptr);
+  lua_settop(L, 1);
+  if (luaL_loadfilex(L, name, "t") != LUA_OK) {
+    luaL_where(L, 1);
+    lua_insert(L, -2);
+    lua_pushfstring(L, "dofile: %s", lua_tostring(L, -1));
+    lua_replace(L, -2);
+    lua_concat(L, 2);
+    return lua_error(L);
+  }
+  lua_call(L, 0, LUA_MULTRET);
+  return lua_gettop(L) - 1;
+}
+
+// package.searchers[2]: Lua files on package.path, loaded as text.
+int search_lua_text(lua_State* L) {
+  const char* name = luaL_checkstring(L, 1);
+  lua_getglobal(L, "package");
+  lua_getfield(L, -1, "searchpath");
+  lua_pushstring(L, name);
+  lua_getfield(L, -3, "path");
+  if (!lua_isstring(L, -1)) return luaL_error(L, "'package.path' must be a string");
+  lua_call(L, 2, 2);
+  if (lua_isnil(L, -2)) return 1;  // the "no file ..." list
+  const char* file = lua_tostring(L, -2);
+  if (luaL_loadfilex(L, file, "t") != LUA_OK)
+    return luaL_error(L, "error loading module '%s' from file '%s':\n\t%s", name, file, lua_tostring(L, -1));
+  lua_pushstring(L, file);
+  return 2;
+}
+
+int script_exit(lua_State* L);  // below, with the batch run
+
+void refuse_bytecode(lua_State* L) {
+  const std::pair<const char*, lua_CFunction> text_only_loaders[] = {{"load", text_load}, {"loadfile", text_loadfile}};
+  for (const auto& [name, text_only] : text_only_loaders) {
+    lua_getglobal(L, name);
+    lua_pushcclosure(L, text_only, 1);
+    lua_setglobal(L, name);
+  }
+  lua_pushcfunction(L, text_dofile);
+  lua_setglobal(L, "dofile");
+  lua_getglobal(L, "package");
+  lua_getfield(L, -1, "searchers");
+  lua_pushcfunction(L, search_lua_text);
+  lua_rawseti(L, -2, 2);
+  lua_pop(L, 2);
+}
+
 }  // namespace
 
 int docall_with_traceback(lua_State* L, int nargs, int nresults) { return docall(L, nargs, nresults); }
@@ -74,6 +165,11 @@ lua_State* new_state(Session s) {
   lua_State* L = luaL_newstate();
   if (!L) return nullptr;
   luaL_openlibs(L);
+  refuse_bytecode(L);
+  lua_getglobal(L, "os");
+  lua_pushcfunction(L, script_exit);
+  lua_setfield(L, -2, "exit");
+  lua_pop(L, 1);
   set_session(L, std::move(s));
   luaL_requiref(L, "dda", open_module, 1);  // package.loaded.dda and the global dda
   lua_pop(L, 1);
@@ -174,25 +270,18 @@ void log_start(Session& s, const RunOptions& options) {
 
 }  // namespace
 
-int run_batch(const RunOptions& options) {
-  const auto start = std::chrono::steady_clock::now();
-  Session s = options.session;
-  if (!s.quiet) s.progress = isatty(fileno(stderr)) && isatty(fileno(stdout)) ? ProgressMode::Bar : ProgressMode::Lines;
-  if (const char* env = std::getenv("DDA_PROGRESS_SECONDS"); env && *env) s.progress_seconds = std::atof(env);
-  log_start(s, options);
-  lua_State* L = new_state(std::move(s));
-  if (!L) {
-    std::fprintf(stderr, "dda: cannot create a Lua state (not enough memory)\n");
-    return 1;
-  }
-  set_run_log(&session(L).log);
-  install_interrupt_handler(L);
-  std::string error;
-  const std::filesystem::path script = resolve_script(options.script);
-  bool ok = run_file(L, script.string(), options.script_args, error);
+namespace {
+
+// How the run ends, whether the script returns or calls os.exit: results
+// and outputs written and checked, the state closed (models finish their
+// queued frames and files), the run log's last line. Returns the exit status
+// (`requested`: the script's os.exit status, when it is still ok).
+int finish_batch(lua_State* L, bool ok, std::string error, int requested, std::chrono::steady_clock::time_point start) {
   const bool interrupted = interrupt_requested();
   remove_interrupt_handler();
-  for (const std::string& w : unused_params(session(L))) warn(w.substr(w.rfind("warning: ", 0) == 0 ? 9 : 0));
+  // A script that failed early never reached its dda.param calls: no warnings then.
+  if (ok)
+    for (const std::string& w : unused_params(session(L))) warn(w.substr(w.rfind("warning: ", 0) == 0 ? 9 : 0));
   if (!session(L).results.empty()) {
     std::string why;
     if (!write_results(session(L), why)) {
@@ -200,16 +289,25 @@ int run_batch(const RunOptions& options) {
       ok = false;
     }
   }
-  // lua_close closes (and flushes) every monitor's CSV file; the log outlives it.
+  // lua_close closes every model: frame sequences finish their queued
+  // frames, monitors close their CSV files. The log outlives it.
   RunLog log = std::move(session(L).log);
   set_run_log(&log);
   lua_close(L);
-  std::fflush(stdout);
-  int status = 0;
+  // What the script printed is an output too (dda run > table.txt).
+  errno = 0;
+  if ((std::fflush(stdout) != 0 || std::ferror(stdout)) && ok) {
+    error = msg("cannot write the standard output: ", errno ? std::strerror(errno) : "a write failed");
+    ok = false;
+  }
+  if (!log.failure().empty() && ok) {
+    error = msg("run log: ", log.failure());
+    ok = false;
+  }
+  int status = ok ? requested : 1;
   if (!ok) {
     std::fprintf(stderr, "dda: %s\n", error.c_str());
     log.line("error: " + error);
-    status = 1;
     if (interrupted) {
       std::fprintf(stderr, "dda: interrupted; the monitor files hold every step computed so far\n");
       status = 130;
@@ -225,6 +323,57 @@ int run_batch(const RunOptions& options) {
                                : " (error)",
                " after ", wall, " s"));
   return status;
+}
+
+// The batch run in progress, for os.exit.
+struct BatchInProgress {
+  lua_State* L;
+  std::chrono::steady_clock::time_point start;
+};
+BatchInProgress* g_batch = nullptr;
+
+// os.exit([code]): as Lua's (true: success, false: failure, else the
+// number), but the run ends as when the script returns: the state is
+// closed first, so no model is left with frames queued on its writer thread
+// while exit() destroys the statics that thread uses (the font cache), and
+// every output is finished and checked.
+int script_exit(lua_State* L) {
+  const int requested = lua_isboolean(L, 1) ? (lua_toboolean(L, 1) ? EXIT_SUCCESS : EXIT_FAILURE)
+                                            : static_cast<int>(luaL_optinteger(L, 1, EXIT_SUCCESS));
+  lua_rawgeti(L, LUA_REGISTRYINDEX, LUA_RIDX_MAINTHREAD);
+  lua_State* main = lua_tothread(L, -1);
+  lua_pop(L, 1);
+  if (g_batch && main == g_batch->L) {
+    const BatchInProgress batch = *g_batch;
+    g_batch = nullptr;
+    std::exit(finish_batch(batch.L, true, "", requested, batch.start));
+  }
+  lua_close(main);  // the console, tests: close every model, then exit
+  std::exit(requested);
+}
+
+}  // namespace
+
+int run_batch(const RunOptions& options) {
+  const auto start = std::chrono::steady_clock::now();
+  Session s = options.session;
+  if (!s.quiet) s.progress = isatty(fileno(stderr)) && isatty(fileno(stdout)) ? ProgressMode::Bar : ProgressMode::Lines;
+  if (const char* env = std::getenv("DDA_PROGRESS_SECONDS"); env && *env) s.progress_seconds = std::atof(env);
+  log_start(s, options);
+  lua_State* L = new_state(std::move(s));
+  if (!L) {
+    std::fprintf(stderr, "dda: cannot create a Lua state (not enough memory)\n");
+    return 1;
+  }
+  set_run_log(&session(L).log);
+  install_interrupt_handler(L);
+  BatchInProgress batch{L, start};
+  g_batch = &batch;
+  std::string error;
+  const std::filesystem::path script = resolve_script(options.script);
+  const bool ok = run_file(L, script.string(), options.script_args, error);
+  g_batch = nullptr;
+  return finish_batch(L, ok, std::move(error), 0, start);
 }
 
 }  // namespace dda::script

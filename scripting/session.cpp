@@ -97,48 +97,45 @@ void check_interrupt(const char* where_text) {
 
 // ---- run log --------------------------------------------------------------------------
 
-RunLog& RunLog::operator=(RunLog&& o) noexcept {
-  if (this != &o) {
-    close();
-    file_ = o.file_;
-    path_ = std::move(o.path_);
-    o.file_ = nullptr;
-  }
-  return *this;
-}
-
 void RunLog::open(const std::filesystem::path& path) {
   close();
   path_ = path;
+  failure_.clear();
   std::error_code ec;
   if (path.has_parent_path()) std::filesystem::create_directories(path.parent_path(), ec);
-  file_ = std::fopen(path.c_str(), "a");
-  if (!file_) failed("cannot open");
+  try {
+    file_ = AppendFile(path, AppendFile::Mode::Append);
+  } catch (const std::exception& e) {
+    failed(e.what());
+  }
 }
 
-void RunLog::failed(const char* what) {
-  std::fprintf(stderr, "dda: warning: %s the run log '%s': %s; the run goes on without it\n", what, path_.c_str(),
-               std::strerror(errno));
-  if (file_) std::fclose(file_);
-  file_ = nullptr;
+void RunLog::failed(const std::string& why) {
+  std::fprintf(stderr, "dda: warning: run log: %s; the run goes on without it\n", why.c_str());
+  if (failure_.empty()) failure_ = why;
+  file_ = AppendFile();
 }
 
 void RunLog::line(const std::string& text) {
-  if (!file_) return;
+  if (!file_.is_open()) return;
   char stamp[32];
   const std::time_t now = std::time(nullptr);
   std::tm tm{};
   localtime_r(&now, &tm);
   std::strftime(stamp, sizeof stamp, "%Y-%m-%d %H:%M:%S", &tm);
-  if (std::fprintf(file_, "%s  %s\n", stamp, text.c_str()) < 0 || std::fflush(file_) != 0) failed("cannot write");
+  try {
+    file_.append(std::string(stamp) + "  " + text + "\n");
+  } catch (const std::exception& e) {
+    failed(e.what());
+  }
 }
 
 void RunLog::close() {
-  if (file_ && std::fclose(file_) != 0) {
-    file_ = nullptr;
-    failed("cannot close");
+  try {
+    file_.close();
+  } catch (const std::exception& e) {
+    failed(e.what());
   }
-  file_ = nullptr;
 }
 
 namespace {

@@ -14,7 +14,11 @@
 #include <string>
 #include <vector>
 
+#include "core/output_file.hpp"
+
 namespace dda::script {
+
+using dda::AppendFile;
 
 // How stepping calls show their progress: a redrawn line on a terminal,
 // plain lines (at most one every `progress_seconds`, and one per 5 % done)
@@ -23,9 +27,10 @@ enum class ProgressMode { None, Bar, Lines };
 
 // The run log beside the outputs (<out>/run.log): command line, version,
 // threads, parameters, each model's controls, warnings, start and end, exit
-// status. Appended to, one block per run; lines are flushed as written. A
-// log that cannot be written is reported once and then left off: it never
-// stops a run.
+// status. Appended to, one block per run, each line written whole
+// (AppendFile). A log that cannot be written is reported at once and then
+// left off, so it never stops a run; failure() keeps the cause, and `dda run`
+// ends with exit status 1 naming it.
 class RunLog {
  public:
   RunLog() = default;
@@ -36,19 +41,22 @@ class RunLog {
     if (this != &o) close(), path_ = o.path_;
     return *this;
   }
-  RunLog(RunLog&& o) noexcept : file_(o.file_), path_(std::move(o.path_)) { o.file_ = nullptr; }
-  RunLog& operator=(RunLog&& o) noexcept;
-  ~RunLog() { close(); }
+  RunLog(RunLog&& o) noexcept = default;
+  RunLog& operator=(RunLog&& o) noexcept = default;
+  ~RunLog() = default;
   void open(const std::filesystem::path& path);
-  bool is_open() const { return file_ != nullptr; }
+  bool is_open() const { return file_.is_open(); }
   const std::filesystem::path& path() const { return path_; }
   void line(const std::string& text);  // "2026-11-25 02:50:01  text"
   void close();
+  // "cannot write 'PATH': cause" once the log failed, else empty.
+  const std::string& failure() const { return failure_; }
 
  private:
-  void failed(const char* what);
-  std::FILE* file_ = nullptr;
+  void failed(const std::string& why);
+  AppendFile file_;
   std::filesystem::path path_;
+  std::string failure_;
 };
 
 // A value a script returns for the batch table (return {ppv = ...} or dda.result{...}).

@@ -104,6 +104,10 @@ void define_type(lua_State* L, const char* type, const Method* methods, const lu
   }
   lua_setfield(L, -2, "__index");
   if (meta) luaL_setfuncs(L, meta, 0);
+  // Scripts cannot reach the metatable (getmetatable returns this text):
+  // getmetatable(m).__gc(m) would delete a model that handles still use.
+  lua_pushstring(L, type);
+  lua_setfield(L, -2, "__metatable");
   lua_pop(L, 1);
 }
 

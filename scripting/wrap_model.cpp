@@ -386,7 +386,8 @@ int m_close(lua_State* L) {
 }
 
 int m_gc(lua_State* L) {
-  auto* box = static_cast<ModelBox*>(lua_touserdata(L, 1));
+  auto* box = static_cast<ModelBox*>(luaL_testudata(L, 1, kModelType));
+  if (!box) return 0;
   delete box->model;
   box->model = nullptr;
   return 0;

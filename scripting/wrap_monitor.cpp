@@ -78,13 +78,15 @@ int m_monitor(lua_State* L) {
     if (session_.files.count(key))
       fail("m:monitor: another monitor already writes ", mon->path.string(),
            " in this run; give this one another name");
-    mon->file = std::fopen(mon->path.c_str(), "w");
-    if (!mon->file) fail("m:monitor: cannot write ", mon->path.string(), ": ", std::strerror(errno));
+    std::string header = "step,time";
+    for (Field f : mon->fields) header.append(",").append(field_name(f));
+    try {
+      mon->file = AppendFile(mon->path, AppendFile::Mode::Truncate);
+      mon->file.append(header + "\n");
+    } catch (const Error& e) {
+      fail("m:monitor: ", e.what());
+    }
     session_.files.insert(key);
-    std::fputs("step,time", mon->file);
-    for (Field f : mon->fields) std::fprintf(mon->file, ",%s", field_name(f));
-    std::fputc('\n', mon->file);
-    std::fflush(mon->file);
   } else {
     session_.files.insert(msg("(memory) ", mon->name, " ", session_.files.size()));
   }

@@ -10,6 +10,7 @@
 #include <string>
 
 #include "core/error.hpp"
+#include "core/output_file.hpp"
 
 #include <zlib.h>
 
@@ -113,23 +114,11 @@ std::vector<std::uint8_t> encode_png(const Image& image) {
   return out;
 }
 
+// Through the checked writer (PATH.part, then renamed): a failure is an
+// error naming the file, and no half-written PNG is ever left under PATH.
 void write_png(const Image& image, const std::filesystem::path& path) {
   const std::vector<std::uint8_t> bytes = encode_png(image);
-  const std::filesystem::path part = std::filesystem::path(path).concat(".part");
-  auto fail = [&](const char* what, int err) {
-    std::remove(part.c_str());
-    throw Error(msg("cannot write PNG '", path.string(), "': ", what, ": ", std::strerror(err)));
-  };
-  std::FILE* f = std::fopen(part.c_str(), "wb");
-  if (!f) fail("cannot create the file", errno);
-  const std::size_t written = std::fwrite(bytes.data(), 1, bytes.size(), f);
-  const int write_err = errno;
-  if (written != bytes.size()) {
-    std::fclose(f);
-    fail("write failed", write_err);
-  }
-  if (std::fclose(f) != 0) fail("write failed", errno);
-  if (std::rename(part.c_str(), path.c_str()) != 0) fail("cannot rename the finished file into place", errno);
+  write_file_atomically(path, std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()));
 }
 
 }  // namespace dda::render

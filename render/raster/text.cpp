@@ -93,9 +93,11 @@ struct Glyph {
 
 class FontCache {
  public:
+  // Never destroyed: a frame-writer thread may still draw text while exit()
+  // runs the destructors of statics (os.exit with frames queued).
   static FontCache& get() {
-    static FontCache cache;
-    return cache;
+    static FontCache* cache = new FontCache;
+    return *cache;
   }
 
   std::string description() {

@@ -1,0 +1,94 @@
+// libFuzzer target: the script loader. The bytes are a Lua script run the
+// way `dda run` runs one (the dda module loaded, text only, a traceback
+// handler); it must succeed or fail with a Lua error. A crash, a sanitizer
+// report or a hang is a finding.
+//
+// The script runs sandboxed so that fuzzing cannot touch the machine: no io
+// library, no os.execute / exit / remove / rename, print silenced, outputs
+// (monitors, frames, VTU) in a private temporary folder, one thread. Lua code
+// is stopped after 5 million instructions and Lua's memory is capped at
+// 512 MB ("not enough memory", an ordinary Lua error), so endless loops and
+// string.rep bombs are script errors, not findings.
+#include <cstdint>
+#include <cstdlib>
+#include <filesystem>
+#include <string>
+
+#include "scripting.hpp"
+
+namespace {
+
+constexpr int kInstructionBatch = 10000;
+constexpr long kInstructionLimit = 5'000'000;
+constexpr long long kMemoryLimit = 512LL << 20;
+
+struct Budget {
+  long instructions = 0;
+  long long bytes = 0;  // since the allocator was set (blocks from before are freed through it too)
+};
+Budget g_budget;
+
+void count_hook(lua_State* L, lua_Debug*) {
+  g_budget.instructions += kInstructionBatch;
+  if (g_budget.instructions > kInstructionLimit) luaL_error(L, "fuzz: instruction limit reached");
+}
+
+void* capped_alloc(void*, void* ptr, std::size_t old_size, std::size_t new_size) {
+  if (!ptr) old_size = 0;
+  if (new_size == 0) {
+    std::free(ptr);
+    g_budget.bytes -= static_cast<long long>(old_size);
+    return nullptr;
+  }
+  if (new_size > old_size && g_budget.bytes + static_cast<long long>(new_size - old_size) > kMemoryLimit)
+    return nullptr;
+  void* p = std::realloc(ptr, new_size);
+  if (p) g_budget.bytes += static_cast<long long>(new_size) - static_cast<long long>(old_size);
+  return p;
+}
+
+int no_print(lua_State*) { return 0; }
+
+const std::filesystem::path& out_dir() {
+  static const std::filesystem::path dir = [] {
+    char tmpl[] = "/tmp/dda-fuzz-script-XXXXXX";
+    return std::filesystem::path(mkdtemp(tmpl));
+  }();
+  return dir;
+}
+
+void sandbox(lua_State* L) {
+  lua_pushnil(L);
+  lua_setglobal(L, "io");
+  lua_getglobal(L, "package");
+  lua_getfield(L, -1, "loaded");
+  lua_pushnil(L);
+  lua_setfield(L, -2, "io");
+  lua_pop(L, 2);
+  lua_getglobal(L, "os");
+  for (const char* f : {"execute", "exit", "remove", "rename", "tmpname", "setlocale"}) {
+    lua_pushnil(L);
+    lua_setfield(L, -2, f);
+  }
+  lua_pop(L, 1);
+  lua_pushcfunction(L, no_print);
+  lua_setglobal(L, "print");
+  lua_sethook(L, count_hook, LUA_MASKCOUNT, kInstructionBatch);
+}
+
+}  // namespace
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+  dda::script::Session s;
+  s.out_dir = out_dir();
+  s.quiet = true;
+  s.threads = 1;
+  lua_State* L = dda::script::new_state(std::move(s));
+  g_budget = {};
+  lua_setallocf(L, capped_alloc, nullptr);  // Lua's default allocator is realloc/free too
+  sandbox(L);
+  std::string error;
+  dda::script::run_string(L, std::string(reinterpret_cast<const char*>(data), size), "fuzz", error);
+  lua_close(L);
+  return 0;
+}
