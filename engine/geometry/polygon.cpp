@@ -122,4 +122,36 @@ bool point_in_polygon(std::span<const Vec2> v, const Vec2& p) {
   return inside;
 }
 
+double distance_to_outline(std::span<const Vec2> vertices, const Vec2& p) {
+  double d = INFINITY;
+  for (std::size_t j = 0; j < vertices.size(); ++j) {
+    const Vec2 a = vertices[j], e = vertices[(j + 1) % vertices.size()] - a;
+    const double t = std::clamp((p - a).dot(e) / e.squaredNorm(), 0.0, 1.0);
+    d = std::min(d, (p - (a + t * e)).norm());
+  }
+  return d;
+}
+
+std::optional<Vec2> shared_area_point(std::span<const Vec2> p, std::span<const Vec2> q, double inset, double on_tol) {
+  std::vector<double> cuts;
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    const Vec2 a = p[i], e = p[(i + 1) % p.size()] - a;
+    const double len = e.norm();
+    if (!(len > 0)) continue;
+    cuts.assign({0.0, 1.0});
+    for (const Vec2& v : q) {
+      const double t = (v - a).dot(e) / (len * len);
+      if (t > 0 && t < 1 && std::abs(cross(e, v - a)) / len <= on_tol) cuts.push_back(t);
+    }
+    std::sort(cuts.begin(), cuts.end());
+    const Vec2 inward = Vec2(-e.y(), e.x()) / len;
+    for (std::size_t k = 0; k + 1 < cuts.size(); ++k) {
+      const Vec2 point = a + 0.5 * (cuts[k] + cuts[k + 1]) * e + inset * inward;
+      const bool in_p = point_in_polygon(p, point) && distance_to_outline(p, point) > 0.5 * inset;
+      if (in_p && point_in_polygon(q, point) && distance_to_outline(q, point) > 0.5 * inset) return point;
+    }
+  }
+  return std::nullopt;
+}
+
 }  // namespace dda

@@ -1,6 +1,7 @@
 #pragma once
 // Simple polygons: area, centroid and the second moments the DDA sub-matrices
 // need, plus validation of user-supplied outlines.
+#include <optional>
 #include <span>
 #include <string>
 #include <vector>
@@ -45,5 +46,16 @@ bool segments_cross_properly(const Vec2& a, const Vec2& b, const Vec2& c, const 
 // random; whether such segments touch is a distance question (see
 // validate_simple_polygon).
 bool segments_cross_clearly(const Vec2& a, const Vec2& b, const Vec2& c, const Vec2& d, double tol);
+
+// Distance from p to the nearest point of the closed outline.
+double distance_to_outline(std::span<const Vec2> vertices, const Vec2& p);
+
+// A point of shared area that neither an edge crossing nor a vertex inside
+// shows: coinciding outlines, or outlines overlapping along collinear edges.
+// Each edge of `p` (counter-clockwise) is split where vertices of `q` lie on
+// it (within `on_tol`); the midpoint of each piece, moved `inset` into p, is
+// returned when it lies inside both more than inset / 2 from their outlines.
+// Neighbours that only touch along edges have no such point.
+std::optional<Vec2> shared_area_point(std::span<const Vec2> p, std::span<const Vec2> q, double inset, double on_tol);
 
 }  // namespace dda

@@ -90,20 +90,22 @@ void Stepper::check_new_model(WorldState& w) {
     auto vertex_inside = [&](std::span<const Vec2> p, std::span<const Vec2> q, int pb_id, int qb_id) {
       const double size = std::sqrt(std::abs(signed_area(q)));
       for (std::size_t i = 0; i < p.size(); ++i) {
-        if (!point_in_polygon(q, p[i])) continue;
-        double depth = INFINITY;  // distance to q's boundary
-        for (std::size_t j = 0; j < q.size(); ++j) {
-          const Vec2 e = q[(j + 1) % q.size()] - q[j];
-          const double t = std::clamp((p[i] - q[j]).dot(e) / e.squaredNorm(), 0.0, 1.0);
-          depth = std::min(depth, (p[i] - (q[j] + t * e)).norm());
-        }
-        if (depth > 1e-9 * size)
+        if (point_in_polygon(q, p[i]) && distance_to_outline(q, p[i]) > 1e-9 * size)
           throw Error(msg("blocks ", pb_id, " and ", qb_id, " overlap at the start (vertex ", i + 1, " of block ",
                           pb_id, " lies inside block ", qb_id, ")"));
       }
     };
     vertex_inside(pa, pb, a, b);
     vertex_inside(pb, pa, b, a);
+    // Shared area with no crossing and no vertex inside: coinciding blocks,
+    // or blocks overlapping along collinear edges (they would run with no
+    // contact between them).
+    const double inset = 1e-6 * std::sqrt(std::min(blocks.area[a], blocks.area[b]));
+    auto shared = shared_area_point(pa, pb, inset, tol);
+    if (!shared) shared = shared_area_point(pb, pa, inset, tol);
+    if (shared)
+      throw Error(msg("blocks ", a, " and ", b, " overlap at the start: they share area near (", shared->x(), ", ",
+                      shared->y(), "); coinciding blocks, or blocks overlapping along collinear edges"));
   }
   w.half_height = w.measured_half_height();
   if (!(w.half_height > 0)) throw Error("the model has no height (all vertices on one horizontal line)");

@@ -82,6 +82,43 @@ TEST(BadInput, OverlappingBlocksAtTheStartAreNamed) {
   EXPECT_NO_THROW(rotated.step());
 }
 
+// No edge crossing and no vertex strictly inside: these passed the start
+// check before and ran with no contact between the blocks.
+TEST(BadInput, CoincidingAndCollinearOverlappingBlocksAreNamed) {
+  World same;
+  const int rock = same.add_rock_material(test::granite());
+  same.add_block(test::rectangle(0, 0, 1, 1), rock);
+  same.add_block(test::rectangle(2, 0, 1, 1), rock);
+  same.add_block(test::rectangle(0, 0, 1, 1), rock);
+  EXPECT_MESSAGE(same.step(), "blocks 0 and 2 overlap at the start: they share area");
+
+  // Overlapping by half along their collinear top and bottom edges.
+  World half;
+  half.add_block(test::rectangle(0, 0, 1, 1), half.add_rock_material(test::granite()));
+  half.add_block(test::rectangle(0.5, 0, 1, 1), 0);
+  EXPECT_MESSAGE(half.step(), "blocks 0 and 1 overlap at the start");
+
+  // One inside the other, sharing three sides.
+  World inside;
+  inside.add_block(test::rectangle(0, 0, 2, 1), inside.add_rock_material(test::granite()));
+  inside.add_block(test::rectangle(0, 0, 1, 1), 0);
+  EXPECT_MESSAGE(inside.step(), "blocks 0 and 1 overlap at the start");
+
+  // Rotated copies (round-off in every vertex) coincide too.
+  World rotated;
+  const int rock2 = rotated.add_rock_material(test::granite());
+  rotated.add_block(test::rotated(test::rectangle(0, 0, 0.3, 0.2), deg_to_rad(33)), rock2);
+  rotated.add_block(test::rotated(test::rectangle(0, 0, 0.3, 0.2), deg_to_rad(33)), rock2);
+  EXPECT_MESSAGE(rotated.step(), "blocks 0 and 1 overlap at the start");
+
+  // A block on two others, its bottom edge over their T-junction: fine.
+  World stacked;
+  stacked.add_block(test::rectangle(0, 0, 1, 1), stacked.add_rock_material(test::granite()));
+  stacked.add_block(test::rectangle(1, 0, 1, 1), 0);
+  stacked.add_block(test::rectangle(0.5, 1, 1, 1), 0);
+  EXPECT_NO_THROW(stacked.step());
+}
+
 TEST(BadInput, DivergingStepNamesTheBlock) {
   World w;
   const int rock = w.add_rock_material(test::granite());
