@@ -232,9 +232,38 @@ void Stepper::predict(WorldState& w) {
 // as in Shi's iteration: after a tightening pass that is the loose solve with
 // the same states, a smaller lag than after a solve whose states then
 // changed.)
+// Names the block a diverged solve comes from: the first with a non-finite
+// load, stiffness or displacement; when every entry is finite yet the solve
+// overflowed (a norm or product of huge entries), the block with the largest
+// load or stiffness.
+std::string Stepper::divergence_message(const WorldState& w) const {
+  const std::string where = msg("step ", w.steps + 1, " at t = ", w.time, " s diverged: ");
+  const char* cure = " (check material constants, loads, g0 and the time step)";
+  const int n = static_cast<int>(w.blocks.count());
+  for (int b = 0; b < n; ++b) {
+    const bool load = rhs_.segment<6>(6 * b).allFinite(), stiffness = system_.diagonal_block(b).allFinite();
+    if (!load || !stiffness || !solution_.segment<6>(6 * b).allFinite())
+      return msg(where, "block ", b, " has a non-finite ",
+                 !load        ? "load"
+                 : !stiffness ? "stiffness"
+                              : "displacement",
+                 cure);
+  }
+  int worst = 0;
+  double worst_size = -1;
+  bool worst_is_load = true;
+  for (int b = 0; b < n; ++b) {
+    const double load = rhs_.segment<6>(6 * b).cwiseAbs().maxCoeff();
+    const double stiffness = system_.diagonal_block(b).cwiseAbs().maxCoeff();
+    if (std::max(load, stiffness) > worst_size)
+      worst = b, worst_size = std::max(load, stiffness), worst_is_load = load >= stiffness;
+  }
+  return msg(where, "the linear solve overflowed; block ", worst, " has the largest ",
+             worst_is_load ? "load" : "stiffness", " (", worst_size, ")", cure);
+}
+
 Rejection Stepper::open_close(WorldState& w) {
   const Controls& c = w.controls;
-  const int n = static_cast<int>(w.blocks.count());
   bool tightening = false;
   bool first_solve = true;
   for (int it = 0; it < c.open_close_limit; ++it) {
@@ -256,16 +285,7 @@ Rejection Stepper::open_close(WorldState& w) {
     }
     stats_.cg_iterations += report.iterations;
     stats_.patch_iterations += report.patch_iterations;
-    if (!report.finite || !solution_.allFinite()) {
-      // Name the first block whose load or displacement is not finite.
-      for (int b = 0; b < n; ++b)
-        if (!rhs_.segment<6>(6 * b).allFinite() || !solution_.segment<6>(6 * b).allFinite())
-          throw Error(msg("step ", w.steps + 1, " at t = ", w.time, " s diverged: block ", b, " has a non-finite ",
-                          rhs_.segment<6>(6 * b).allFinite() ? "displacement" : "load",
-                          " (check material constants, loads, g0 and the time step)"));
-      throw Error(
-          msg("step ", w.steps + 1, " at t = ", w.time, " s diverged: the linear solve produced non-finite values"));
-    }
+    if (!report.finite || !solution_.allFinite()) throw Error(divergence_message(w));
     if (!report.converged) return Rejection::SolverNotConverged;
 
     bool changed = false;

@@ -7,6 +7,7 @@
 #include <tbb/task_arena.h>
 
 #include <memory>
+#include <string>
 #include <vector>
 
 #include "assembly/block_terms.hpp"
@@ -47,6 +48,7 @@ class Stepper {
   void control_step(WorldState& w, Rejection r);
   void update(WorldState& w);
   void finish_step(WorldState& w);
+  std::string divergence_message(const WorldState& w) const;  // names the block
 
   // Set once per step by begin_step.
   double g0_ = 0, g1_ = 0;  // resolved (automatic values filled in)

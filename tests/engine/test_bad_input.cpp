@@ -131,6 +131,28 @@ TEST(BadInput, DivergingStepNamesTheBlock) {
   EXPECT_MESSAGE(w.set_block_velocity(b, Vec6::Constant(NAN)), "block 1: velocity is not finite");
 }
 
+// Entries that are finite but so large that the solve overflows used to give
+// "the linear solve produced non-finite values" with no block named.
+TEST(BadInput, OverflowingSolveNamesTheBlock) {
+  World dense;
+  const int rock = dense.add_rock_material(test::granite());
+  RockMaterial heavy = test::granite();
+  heavy.density = 1e300;  // the inertia term 2ρ/Δt² overflows
+  dense.controls().g1 = 1e-4;
+  dense.controls().gravity = Vec2(0, -9.81);
+  const int heavy_rock = dense.add_rock_material(heavy);
+  dense.add_block(test::rectangle(0, 0, 1, 1), rock);
+  dense.add_block(test::rectangle(3, 0, 1, 1), heavy_rock);
+  EXPECT_MESSAGE(dense.step(), "diverged: block 1 has a non-finite stiffness");
+
+  World loaded;
+  const int rock2 = loaded.add_rock_material(test::granite());
+  loaded.add_block(test::rectangle(0, 0, 1, 1), rock2);
+  const BlockId b = loaded.add_block(test::rectangle(3, 0, 1, 1), rock2);
+  loaded.add_point_load(b, Vec2(3.5, 0.5), Vec2(0, -1e300));  // finite, but its square is not
+  EXPECT_MESSAGE(loaded.step(), "the linear solve overflowed; block 1 has the largest load");
+}
+
 TEST(BadInput, EmptyModelAndUnknownIds) {
   World w;
   EXPECT_MESSAGE(w.step(), "the model has no blocks");
