@@ -6,13 +6,20 @@
 // The script runs sandboxed so that fuzzing cannot touch the machine: no io
 // library, no os.execute / exit / remove / rename, print silenced, outputs
 // (monitors, frames, VTU) in a private temporary folder, one thread. Lua code
-// is stopped after 5 million instructions and Lua's memory is capped at
-// 512 MB ("not enough memory", an ordinary Lua error), so endless loops and
-// string.rep bombs are script errors, not findings.
+// is stopped after 5 million instructions, stepping after 3 s (the Ctrl-C
+// path: a watchdog raises SIGINT, the step loop stops at the next step
+// boundary) and Lua's memory is capped at 512 MB ("not enough memory", an
+// ordinary Lua error), so endless loops, long runs (the paper scripts of the
+// seed corpus) and string.rep bombs are script errors, not findings.
+#include <chrono>
+#include <condition_variable>
+#include <csignal>
 #include <cstdint>
 #include <cstdlib>
 #include <filesystem>
+#include <mutex>
 #include <string>
+#include <thread>
 
 #include "scripting.hpp"
 
@@ -48,6 +55,31 @@ void* capped_alloc(void*, void* ptr, std::size_t old_size, std::size_t new_size)
 }
 
 int no_print(lua_State*) { return 0; }
+
+// Raises SIGINT (as a Ctrl-C) once the input has run for kWallBudget.
+class Watchdog {
+ public:
+  static constexpr auto kWallBudget = std::chrono::seconds(3);
+  Watchdog()
+      : thread_([this] {
+          std::unique_lock lock(mutex_);
+          if (!done_.wait_for(lock, kWallBudget, [this] { return finished_; })) std::raise(SIGINT);
+        }) {}
+  ~Watchdog() {
+    {
+      std::lock_guard lock(mutex_);
+      finished_ = true;
+    }
+    done_.notify_one();
+    thread_.join();
+  }
+
+ private:
+  std::mutex mutex_;
+  std::condition_variable done_;
+  bool finished_ = false;
+  std::thread thread_;
+};
 
 const std::filesystem::path& out_dir() {
   static const std::filesystem::path dir = [] {
@@ -87,8 +119,15 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   g_budget = {};
   lua_setallocf(L, capped_alloc, nullptr);  // Lua's default allocator is realloc/free too
   sandbox(L);
+  dda::script::clear_interrupt();
+  dda::script::install_interrupt_handler(L);
   std::string error;
-  dda::script::run_string(L, std::string(reinterpret_cast<const char*>(data), size), "fuzz", error);
+  {
+    Watchdog watchdog;
+    dda::script::run_string(L, std::string(reinterpret_cast<const char*>(data), size), "fuzz", error);
+  }
+  dda::script::remove_interrupt_handler();
+  dda::script::clear_interrupt();
   lua_close(L);
   return 0;
 }

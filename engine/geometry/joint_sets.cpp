@@ -41,6 +41,10 @@ bool clip_to_box(const Vec2& p, const Vec2& d, const Vec2& lo, const Vec2& hi, d
   return t0 < t1;
 }
 
+// Origins farther than this many spacings from the domain are refused
+// (fuzzing found an origin at 1e308 overflowing the line numbers).
+constexpr double kMaxOriginSpacings = 1e15;
+
 // A sample of a positive quantity: mean + sd·N(0,1), truncated at 10 % of the mean.
 double positive_sample(SplitMix64& rng, double mean, double sd) {
   if (sd <= 0) return mean;
@@ -58,6 +62,12 @@ SplitMix64 stream(const JointSet& set, int set_index, std::uint64_t tag, long lo
 std::vector<std::pair<long long, double>> line_offsets(const JointSet& set, int set_index, double pmin, double pmax) {
   std::vector<std::pair<long long, double>> lines;
   const double s = set.spacing;
+  // Line numbers are counted from the origin: they must stay exact in a
+  // double (and fit a long long) however far the origin lies from the box.
+  const double far = std::max(std::abs(pmin), std::abs(pmax)) / s;
+  if (!(far <= kMaxOriginSpacings))
+    throw Error(msg("joint set ", set_index + 1, ": its origin lies about ", far, " spacings from the domain (limit ",
+                    kMaxOriginSpacings, "); place the origin near the domain"));
   if (set.spacing_sd <= 0) {
     const double k0 = std::ceil(pmin / s), k1 = std::floor(pmax / s);
     for (double k = k0; k <= k1; k += 1) lines.push_back({static_cast<long long>(k), k * s});
