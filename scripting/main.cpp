@@ -97,7 +97,7 @@ int main(int argc, char** argv) {
       const char* v = value("--threads");
       char* end = nullptr;
       const long n = v ? std::strtol(v, &end, 10) : -1;
-      if (!v || *end != '\0' || n < 0 || n > 4096)
+      if (!v || !*v || *end != '\0' || n < 0 || n > 4096)
         return usage_error("--threads needs a whole number >= 0, got '%s'", v ? v : "");
       opt.session.threads = static_cast<int>(n);
     } else if (a == "--set") {

@@ -202,12 +202,19 @@ bool run_file(lua_State* L, const std::string& path, const std::vector<std::stri
   session(L).script = path;
 
   // Text only: precompiled bytecode is refused.
-  if (luaL_loadfilex(L, path.c_str(), "t") != LUA_OK) {
+  if (const int status = luaL_loadfilex(L, path.c_str(), "t"); status != LUA_OK) {
     error = pop_error(L);
+    if (error.find("attempt to load a binary chunk") != std::string::npos) error = msg(path, ": ", kBinaryRefused);
+    if (status == LUA_ERRMEM) error = msg(path, ": not enough memory to load the script");
     return false;
   }
-  if (docall(L, 0, 1) != LUA_OK) {
+  if (const int status = docall(L, 0, 1); status != LUA_OK) {
     error = pop_error(L);
+    // Lua unwinds a memory error without the message handler: no line to give.
+    if (status == LUA_ERRMEM)
+      error = msg(path,
+                  ": not enough memory (Lua could not allocate more: the machine's memory or a ulimit -v ran "
+                  "out; Lua gives no line for this error)");
     return false;
   }
   // return {ppv = ..., ...}: the run's results (dda sweep tabulates them).

@@ -41,7 +41,11 @@ SequenceOptions validated(SequenceOptions o) {
   if (o.prefix.empty()) o.prefix = o.frame.field == Field::None ? "frame" : field_info(o.frame.field).key;
   o.frame.validate();
   if (!o.warn) o.warn = [](const std::string& m) { std::fprintf(stderr, "warning: %s\n", m.c_str()); };
+  return o;
+}
 
+// Throws dda::Error when frames cannot be written into the folder.
+void prepare_folder(const SequenceOptions& o) {
   std::error_code ec;
   std::filesystem::create_directories(o.folder, ec);
   if (ec) throw Error(msg("frame sequence: cannot create the folder '", o.folder.string(), "': ", ec.message()));
@@ -49,13 +53,20 @@ SequenceOptions validated(SequenceOptions o) {
     throw Error(msg("frame sequence: '", o.folder.string(), "' exists and is not a folder"));
   if (::access(o.folder.c_str(), W_OK) != 0)
     throw Error(msg("frame sequence: the folder '", o.folder.string(), "' is not writable: ", std::strerror(errno)));
-  return o;
 }
 
 }  // namespace
 
 FrameSequence::FrameSequence(SequenceOptions options)
-    : options_(validated(std::move(options))), writer_(options_.queue_capacity) {}
+    : options_(validated(std::move(options))), writer_(options_.queue_capacity) {
+  // An unusable folder is a failing frame like any other: under
+  // OnError::Continue (--frames) a warning, and the run goes on.
+  try {
+    prepare_folder(options_);
+  } catch (const Error& e) {
+    handle(e);
+  }
+}
 
 FrameSequence::~FrameSequence() {
   try {

@@ -81,6 +81,19 @@ local P = {
   ppv_tolerance = dda.param("ppv_tolerance", 0.15),
 }
 
+-- Bad values stop here, with the name, rather than deep in a run (line_step
+-- = 0 looped forever, t_end = 0 failed inside math.abs).
+for _, k in ipairs{ "size", "t_end", "line_step", "spacing", "ppv_tolerance" } do
+  if type(P[k]) ~= "number" or not (P[k] > 0) then
+    error(string.format("--set %s=%s: must be a number > 0", k, tostring(P[k])))
+  end
+end
+for _, k in ipairs{ "frames", "contact_tolerance", "expect_ppv" } do
+  if type(P[k]) ~= "number" or not (P[k] >= 0) then
+    error(string.format("--set %s=%s: must be a number >= 0", k, tostring(P[k])))
+  end
+end
+
 local function ppv(mon, field)
   local v, t = mon:peak(field or "vy")
   return math.abs(v), t
