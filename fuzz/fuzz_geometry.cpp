@@ -12,6 +12,8 @@
 #include <fuzzer/FuzzedDataProvider.h>
 
 #include <cstdint>
+#include <cstdio>
+#include <cstdlib>
 #include <vector>
 
 #include "core/error.hpp"
@@ -43,6 +45,32 @@ std::vector<Vec2> polygon(FuzzedDataProvider& in, int max_vertices) {
   std::vector<Vec2> p(in.ConsumeIntegralInRange<int>(0, max_vertices));
   for (Vec2& v : p) v = point(in);
   return p;
+}
+
+void print_polygon(const char* what, const std::vector<Vec2>& p) {
+  std::fprintf(stderr, "%s:", what);
+  for (const Vec2& v : p) std::fprintf(stderr, " {%.17g, %.17g}", v.x(), v.y());
+  std::fprintf(stderr, "\n");
+}
+
+void print(const dda::geometry::CutInput& cut, const std::vector<std::vector<Vec2>>& blocks) {
+  print_polygon("domain", cut.domain);
+  for (const auto& h : cut.holes) print_polygon("hole", h);
+  for (const auto& s : cut.sets)
+    std::fprintf(
+        stderr,
+        "set: dip %.17g spacing %.17g origin {%.17g, %.17g} material %d trace %.17g bridge %.17g sd %.17g %.17g "
+        "%.17g seed %llu\n",
+        s.dip_deg, s.spacing, s.origin.x(), s.origin.y(), s.joint_material, s.trace_length, s.bridge_length,
+        s.spacing_sd, s.dip_sd_deg, s.trace_sd, static_cast<unsigned long long>(s.seed));
+  for (const auto& l : cut.lines)
+    std::fprintf(stderr, "line: {%.17g, %.17g} {%.17g, %.17g} material %d\n", l.a.x(), l.a.y(), l.b.x(), l.b.y(),
+                 l.joint_material);
+  for (const auto& r : cut.regions) print_polygon("region", r.polygon);
+  std::fprintf(stderr, "min_block_area %.17g sliver %s snap %.17g inner_cut %d\n", cut.min_block_area,
+               cut.sliver_policy == dda::geometry::SliverPolicy::Merge ? "merge" : "error", cut.snap_tolerance,
+               cut.inner_cut_material);
+  for (const auto& b : blocks) print_polygon("block", b);
 }
 
 }  // namespace
@@ -95,6 +123,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   cut.inner_cut_material = in.ConsumeIntegralInRange<int>(-1, 1);
   std::vector<std::vector<Vec2>> explicit_blocks(in.ConsumeIntegralInRange<int>(0, 3));
   for (auto& b : explicit_blocks) b = polygon(in, 6);
+
+  if (std::getenv("DDA_FUZZ_PRINT")) print(cut, explicit_blocks);  // to turn a finding into a test
 
   dda::Controls controls;
   controls.threads = 1;

@@ -7,6 +7,7 @@
 #include <string>
 
 #include "core/error.hpp"
+#include "core/memory.hpp"
 #include "geometry/arrangement.hpp"
 #include "geometry/joint_sets.hpp"
 #include "geometry/polygon.hpp"
@@ -26,6 +27,7 @@ constexpr int kCornerRank = 3;
 constexpr double kMaxRelativeSnap = 1e-3;
 constexpr int kMaxInnerCutPasses = 4;
 constexpr double kMaxSetCrossings = 5e6;
+constexpr double kFarLine = 1e6;  // domain sizes: joint lines reaching farther are clipped first
 constexpr int kMaxCleanupPasses = 64;
 
 bool finite(const Vec2& p) { return std::isfinite(p.x()) && std::isfinite(p.y()); }
@@ -167,6 +169,9 @@ Prepared prepare(const CutInput& in) {
     const JointLine& line = in.lines[l];
     const std::string what = msg("joint line ", l + 1);
     if (!finite(line.a) || !finite(line.b)) throw Error(msg(what, ": an end point has a non-finite coordinate"));
+    if (!finite(Vec2(line.b - line.a)))
+      throw Error(msg(what, ": end points ", point_text(line.a), " and ", point_text(line.b),
+                      " lie too far apart to compute with"));
     if ((line.b - line.a).norm() <= tol)
       throw Error(msg(what, ": zero length (end points ", point_text(line.a), " and ", point_text(line.b), ")"));
     if (line.joint_material < 0) throw Error(msg(what, ": joint material must be ≥ 0, got ", line.joint_material));
@@ -195,6 +200,32 @@ struct SegmentList {
   }
 };
 
+// The part of [a, b] inside the box [lo, hi], for segments reaching very far
+// out (b - a finite). Computed along the segment's dominant axis u, with
+// the other coordinate from the slope (|slope| ≤ 1), so that no parameter
+// t ≈ 0.5 ± 1e-300 loses the part inside. False when no part lies inside.
+bool clip_far_segment(Vec2& a, Vec2& b, const Vec2& lo, const Vec2& hi) {
+  const Vec2 d = b - a;
+  const int u = std::abs(d.x()) >= std::abs(d.y()) ? 0 : 1, v = 1 - u;
+  const double slope = d[v] / d[u];
+  double u0 = std::max(lo[u], std::min(a[u], b[u])), u1 = std::min(hi[u], std::max(a[u], b[u]));
+  if (slope != 0) {
+    double ua = a[u] + (lo[v] - a[v]) / slope, ub = a[u] + (hi[v] - a[v]) / slope;
+    if (ua > ub) std::swap(ua, ub);
+    u0 = std::max(u0, ua);
+    u1 = std::min(u1, ub);
+  } else if (a[v] < lo[v] || a[v] > hi[v]) {
+    return false;
+  }
+  if (!(u0 < u1)) return false;
+  Vec2 p, q;
+  p[u] = u0, p[v] = a[v] + (u0 - a[u]) * slope;
+  q[u] = u1, q[v] = a[v] + (u1 - a[u]) * slope;
+  if (a[u] > b[u]) std::swap(p, q);  // keep the direction
+  a = p, b = q;
+  return true;
+}
+
 // Input order sets precedence where segments overlap: the boundary first,
 // then explicit joint lines, then automatic inner cuts, then sets in order.
 SegmentList collect_segments(const CutInput& in, const Prepared& p, const std::vector<JointLine>& inner_cuts) {
@@ -208,11 +239,19 @@ SegmentList collect_segments(const CutInput& in, const Prepared& p, const std::v
     for (std::size_t k = 0; k < hole.size(); ++k)  // walked clockwise, so the rock is on the left
       list.add(hole[(k + 1) % hole.size()], hole[k], kBoundaryRank, kCornerRank, hole_tag, true);
   }
-  for (const JointLine& line : in.lines)
-    list.add(line.a, line.b, kJointRank, kJointRank, {EdgeKind::Joint, line.joint_material, -1}, false);
+  const double margin = 0.01 * p.size + 10 * p.tol;
+  for (const JointLine& line : in.lines) {
+    // Parts outside the domain are dropped anyway. An end point very far off
+    // (fuzzing found 1e308) would overflow the arrangement's grid of cells:
+    // such a line is clipped to the widened box first. Others go in as given.
+    Vec2 a = line.a, b = line.b;
+    const Vec2 lo = p.box.lo.array() - margin, hi = p.box.hi.array() + margin;
+    auto far = [&](const Vec2& q) { return ((q - p.box.lo).cwiseAbs().maxCoeff() > kFarLine * p.size); };
+    if ((far(a) || far(b)) && !clip_far_segment(a, b, lo, hi)) continue;
+    list.add(a, b, kJointRank, kJointRank, {EdgeKind::Joint, line.joint_material, -1}, false);
+  }
   for (const JointLine& cut : inner_cuts)
     list.add(cut.a, cut.b, kJointRank, kJointRank, {EdgeKind::Joint, cut.joint_material, -1}, false, true);
-  const double margin = 0.01 * p.size + 10 * p.tol;
   // Refuse early what would exhaust memory: two sets of total joint lengths
   // L1 and L2 at angle Δ cross about L1·L2·|sin Δ| / A times in a box of area A.
   std::vector<double> set_length(in.sets.size(), 0.0);
@@ -224,6 +263,7 @@ SegmentList collect_segments(const CutInput& in, const Prepared& p, const std::v
     }
   }
   const Vec2 wide = (p.box.hi - p.box.lo).array() + 2 * margin;
+  double all_crossings = 0;
   for (std::size_t a = 0; a < in.sets.size(); ++a)
     for (std::size_t b = a + 1; b < in.sets.size(); ++b) {
       const double angle = deg_to_rad(in.sets[a].dip_deg - in.sets[b].dip_deg);
@@ -232,7 +272,15 @@ SegmentList collect_segments(const CutInput& in, const Prepared& p, const std::v
         throw Error(msg("joint sets ", a + 1, " and ", b + 1, " would cross about ", std::round(crossings),
                         " times (limit ", kMaxSetCrossings,
                         "): far more blocks than a model can run; check the spacings"));
+      all_crossings += crossings;
     }
+  // The cut's memory grows with the crossings (about 0.6 to 0.85 kB each
+  // measured, docs/robustness.md): refuse before cutting what cannot fit.
+  constexpr double kCutBytesPerCrossing = 1000;
+  check_memory_need(kCutBytesPerCrossing * (all_crossings + static_cast<double>(list.segments.size())),
+                    memory_headroom_bytes(), "cutting the domain",
+                    msg("about ", std::round(all_crossings), " joint crossings"),
+                    "use larger joint spacings or a smaller domain");
   return list;
 }
 

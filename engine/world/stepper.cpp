@@ -40,6 +40,7 @@
 #include "assembly/contact_terms.hpp"
 #include "contact/broad_phase.hpp"
 #include "core/error.hpp"
+#include "core/memory.hpp"
 #include "core/parallel.hpp"
 #include "geometry/polygon.hpp"
 
@@ -107,6 +108,15 @@ void Stepper::check_new_model(WorldState& w) {
       throw Error(msg("blocks ", a, " and ", b, " overlap at the start: they share area near (", shared->x(), ", ",
                       shared->y(), "); coinciding blocks, or blocks overlapping along collinear edges"));
   }
+  // Memory stated up front: a model the machine cannot hold is refused
+  // here, with the estimate, not killed part way (docs/robustness.md has
+  // the calibration: about 3.3 kB a block for squares, 3.9 kB for triangles).
+  constexpr double kStepBytesPerBlock = 2500, kStepBytesPerVertex = 500;
+  const double vertices = static_cast<double>(blocks.vertices.size());
+  check_memory_need(kStepBytesPerBlock * static_cast<double>(blocks.count()) + kStepBytesPerVertex * vertices,
+                    memory_headroom_bytes(), "the model's first step",
+                    msg(blocks.count(), " blocks with ", vertices, " vertices"),
+                    "use fewer blocks (larger joint spacings or a smaller domain)");
   w.half_height = w.measured_half_height();
   if (!(w.half_height > 0)) throw Error("the model has no height (all vertices on one horizontal line)");
   detection_.start_automatic_range(blocks);

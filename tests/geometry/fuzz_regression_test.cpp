@@ -41,4 +41,28 @@ TEST(FuzzRegression, JointSetOriginFarFromTheDomainIsRefused) {
   EXPECT_EQ(cut_blocks(near).blocks.size(), 4u);
 }
 
+// dda_fuzz_geometry: an explicit joint reaching to x = -1.6e308 overflowed
+// the arrangement's cell numbers (UBSan: -inf outside the range of long).
+// Its far part lies outside the domain and is dropped: it ends inside the
+// rock, so it cuts nothing.
+TEST(FuzzRegression, JointLineReachingFarOutIsClipped) {
+  CutInput in;
+  in.domain = {{-2, -2}, {2, -2}, {2, -0.5}, {-2, -0.5}};
+  in.lines.push_back({Vec2(-0.5, -1.5), Vec2(-1.6496300525252463e+308, -2), 1});
+  in.sliver_policy = SliverPolicy::Error;
+  const BlockSet set = cut_blocks(in);
+  ASSERT_EQ(set.blocks.size(), 1u);
+  EXPECT_NEAR(set.blocks[0].area, 6.0, 1e-12);  // exact: 4 m × 1.5 m
+
+  // Crossing the domain, from far left to far right: two blocks of 3 m².
+  in.lines = {{Vec2(-1e300, -1.25), Vec2(1e300, -1.25), 1}};
+  const BlockSet two = cut_blocks(in);
+  ASSERT_EQ(two.blocks.size(), 2u);
+  EXPECT_NEAR(two.blocks[0].area, 3.0, 1e-12);
+  EXPECT_NEAR(two.blocks[1].area, 3.0, 1e-12);
+
+  in.lines = {{Vec2(-1e308, -1.25), Vec2(1e308, -1.25), 1}};  // b - a overflows
+  EXPECT_NE(error_of(in).find("joint line 1: end points"), std::string::npos) << error_of(in);
+}
+
 }  // namespace

@@ -86,4 +86,50 @@ for bad in ["line_step=0", "t_end=0", "spacing=-1", "frames=-1"]:
     except subprocess.TimeoutExpired:
         check(False, "blast.lua --set %s: refused at once (it ran on for 60 s)" % bad)
 
+# ---- memory stated up front (Deliver 4) ------------------------------------------------------
+# A 300 x 300 grid (90 000 blocks): the first step is estimated at 0.41 GB.
+# Under an address-space limit (ulimit -v) it is refused before it starts,
+# naming the estimate; with room for the estimate it runs, so the estimate
+# is not below what the step takes. A domain whose cut alone would not fit
+# is refused before cutting.
+GRID = """
+local n = dda.param("n", 300)
+local m = dda.model{ plane = 'stress', g1 = 1e-4, gravity = {0, -9.81}, threads = 1 }
+local rock = m:rock{ density = 2000, E = 1e9, nu = 0.25 }
+m:domain{ box = {0, 0, n, n}, rock = rock }
+m:joint_set{ dip = 0, spacing = 1 }
+m:joint_set{ dip = 90, spacing = 1 }
+local blocks = m:generate()
+local f = io.open("/proc/self/status") local vm = f:read("a"):match("VmSize:%s*(%d+)") f:close()
+print("generated", #blocks, "vmsize_kb", vm)
+m:fix{0.5, 0.5}
+m:step(1)
+print("stepped")
+"""
+write(os.path.join(d, "grid.lua"), GRID)
+r = run(["run", "grid.lua", "--quiet"], d)
+vm_kb = int(r.stdout.split("vmsize_kb")[1].split()[0]) if "vmsize_kb" in r.stdout else 0
+check(r.returncode == 0 and "stepped" in r.stdout and vm_kb > 0, "the 90 000-block grid runs unlimited", r.stderr)
+
+
+def address_space(kb):
+    def pre():
+        resource.setrlimit(resource.RLIMIT_AS, (kb * 1024, kb * 1024))
+    return pre
+
+
+p = subprocess.run([DDA, "run", "grid.lua", "--quiet"], cwd=d, capture_output=True, text=True, timeout=300,
+                   preexec_fn=address_space(vm_kb + 150 * 1024))
+check(p.returncode == 1 and "generated\t90000" in p.stdout and
+      "m:step: the model's first step needs about 0.41 GB of memory (90000 blocks with 360000 vertices)" in p.stderr,
+      "150 MB of room: the first step is refused with its estimate", (p.returncode, p.stderr))
+p = subprocess.run([DDA, "run", "grid.lua", "--quiet"], cwd=d, capture_output=True, text=True, timeout=300,
+                   preexec_fn=address_space(vm_kb + 500 * 1024))
+check(p.returncode == 0 and "stepped" in p.stdout, "500 MB of room (more than the 0.41 GB estimate): it runs",
+      (p.returncode, p.stderr))
+p = subprocess.run([DDA, "run", "grid.lua", "--set", "n=2000", "--quiet"], cwd=d, capture_output=True, text=True,
+                   timeout=300, preexec_fn=address_space(vm_kb + 500 * 1024))
+check(p.returncode == 1 and "m:generate: cutting the domain needs about 4" in p.stderr and "4004001 joint crossings"
+      in p.stderr, "a cut that cannot fit is refused before cutting, with its estimate", (p.returncode, p.stderr))
+
 finish()
