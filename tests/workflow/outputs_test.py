@@ -116,6 +116,22 @@ if first:
 else:
     check(False, "--vtu 5 wrote VTU files", vtus)
 
+# ---- killed in the middle: every row complete ---------------------------------------------
+import time
+for sig in (signal.SIGTERM, signal.SIGKILL):
+    out = "kill%d" % sig
+    p = subprocess.Popen([DDA, "run", "long.lua", "--out", out, "--quiet"], cwd=d, stdout=subprocess.DEVNULL,
+                         stderr=subprocess.DEVNULL)
+    csv_path = os.path.join(d, out, "mon.csv")
+    end = time.time() + 30
+    while time.time() < end and (not os.path.exists(csv_path) or os.path.getsize(csv_path) < 2000):
+        time.sleep(0.05)
+    p.send_signal(sig)
+    p.wait(timeout=60)
+    csv = read(csv_path)
+    check(complete_rows(csv, 5) and csv.count("\n") > 10, "killed by signal %d mid-run: every row complete" % sig,
+          csv[-200:])
+
 # ---- os.exit() with frames still queued, many times ----------------------------------------
 EXIT = MODEL + "m:run{ steps = 12 }\nos.exit(CODE)\n"
 write(os.path.join(d, "exit.lua"), EXIT.replace("CODE", "true"))
