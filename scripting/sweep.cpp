@@ -349,6 +349,7 @@ long run_tasks(const Plan& p, const std::vector<long>& tasks) {
       write_file_atomically(p.folder(it->id) / "status.txt", msg(code, " ", wall, "\n"));
     } catch (const std::exception& e) {
       std::fprintf(stderr, "dda sweep: %s\n", e.what());
+      failed += code == 0;  // the run's record is lost: the sweep does not end with 0
     }
     ++done;
     failed += code != 0;

@@ -116,6 +116,18 @@ if first:
 else:
     check(False, "--vtu 5 wrote VTU files", vtus)
 
+# ---- sweep records and tables on a full disk ------------------------------------------------
+write(os.path.join(d, "sw.lua"), 'local a = dda.param("a", 1)\ndda.result{ a = a }\n')
+os.makedirs(os.path.join(d, "swo", "run_001"))
+os.symlink("/dev/full", os.path.join(d, "swo", "run_001", "status.txt.part"))
+r = run(["sweep", "sw.lua", "--grid", "a=1,2", "--out", "swo"], d)
+check(r.returncode == 1 and "cannot write 'swo/run_001/status.txt': No space left on device" in r.stderr,
+      "a sweep whose run record cannot be written: exit 1, the file named (was: 0)", (r.returncode, r.stderr))
+os.symlink("/dev/full", os.path.join(d, "swo", "summary.csv.part"))
+r = run(["sweep", "sw.lua", "--grid", "a=1,2", "--out", "swo"], d)
+check(r.returncode == 1 and "cannot write 'swo/summary.csv': No space left on device" in r.stderr,
+      "a sweep table on a full disk: exit 1, the file named", (r.returncode, r.stderr))
+
 # ---- killed in the middle: every row complete ---------------------------------------------
 import time
 for sig in (signal.SIGTERM, signal.SIGKILL):
