@@ -41,8 +41,9 @@ bool clip_to_box(const Vec2& p, const Vec2& d, const Vec2& lo, const Vec2& hi, d
   return t0 < t1;
 }
 
-// Origins farther than this many spacings from the domain are refused
-// (fuzzing found an origin at 1e308 overflowing the line numbers).
+// Origins farther than this many spacings (across the joints) or trace
+// periods (along them) from the domain are refused: fuzzing found origins at
+// 1e308 overflowing the line numbers and never reaching the box.
 constexpr double kMaxOriginSpacings = 1e15;
 
 // A sample of a positive quantity: mean + sd·N(0,1), truncated at 10 % of the mean.
@@ -162,6 +163,16 @@ std::vector<JointSegment> joint_set_segments(const JointSet& set, int set_index,
     pmax = std::max(pmax, n.dot(c - set.origin));
     tmin = std::min(tmin, d.dot(c - set.origin));
     tmax = std::max(tmax, d.dot(c - set.origin));
+  }
+  // Traces are laid from the origin along the line: as for the offsets
+  // (line_offsets), positions must stay exact in a double, or t + period == t
+  // never reaches the box (fuzzing found an origin at x = -1.8e308 hanging here).
+  if (!persistent) {
+    const double far = std::max(std::abs(tmin), std::abs(tmax)) / (set.trace_length + set.bridge_length);
+    if (!(far <= kMaxOriginSpacings))
+      throw Error(msg("joint set ", set_index + 1, ": its origin lies about ", far,
+                      " trace periods (trace + bridge length) from the domain along its joints (limit ",
+                      kMaxOriginSpacings, "); place the origin near the domain"));
   }
   const double diameter = (hi - lo).norm();
   // Joints turned by the dip variation can reach the box from lines a little

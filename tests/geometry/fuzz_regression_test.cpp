@@ -41,6 +41,21 @@ TEST(FuzzRegression, JointSetOriginFarFromTheDomainIsRefused) {
   EXPECT_EQ(cut_blocks(near).blocks.size(), 4u);
 }
 
+// dda_fuzz_geometry: a non-persistent set whose origin lies at x = -1.8e308
+// along its joints hung laying traces (t + period == t never reached the box).
+TEST(FuzzRegression, NonPersistentSetOriginFarAlongItsJointsIsRefused) {
+  CutInput in;
+  in.domain = {{-2, -2}, {2, -2}, {2, 2}, {-2, 2}};
+  JointSet s = geometry::test::persistent_set(0, 1.25, Vec2(-1.7976931348623027e+308, 2), 1);
+  s.trace_length = 0.86986831568412226;
+  s.bridge_length = 2.6791512940408211;
+  s.seed = 781548;
+  in.sets.push_back(s);
+  EXPECT_NE(error_of(in).find("joint set 1: its origin lies about"), std::string::npos) << error_of(in);
+  in.sets[0].origin = Vec2(-1e6, 2);  // far, but positions stay exact: it cuts
+  EXPECT_NO_THROW(cut_blocks(in));
+}
+
 // dda_fuzz_geometry: an explicit joint reaching to x = -1.6e308 overflowed
 // the arrangement's cell numbers (UBSan: -inf outside the range of long).
 // Its far part lies outside the domain and is dropped: it ends inside the
