@@ -121,7 +121,7 @@ Result run(const std::string& scene, int threads, const std::string& pre, int wa
 // The CHOLMOD factor of a: its sizes, the CPU ms of its analysis, of a numeric
 // factorisation, of a solve with it and of a product A·x (the unit of the
 // automatic choice's work, solver_choice.hpp), and CHOLMOD's peak memory.
-std::string cholmod_row(const std::string& name, const BlockSparseMatrix& a, const VecX& b) {
+std::string cholmod_row(const std::string& name, FillOrdering ordering, const BlockSparseMatrix& a, const VecX& b) {
   // CPU seconds of this thread (all of it runs here): less moved by a busy machine than the clock.
   auto now = [] {
     timespec t{};
@@ -130,6 +130,7 @@ std::string cholmod_row(const std::string& name, const BlockSparseMatrix& a, con
   };
   auto ms_since = [&](double t) { return (now() - t) * 1e3; };
   CholmodFactor f;
+  f.ordering = ordering;
   auto t = now();
   f.factorise(a);
   const double first = ms_since(t);
@@ -146,9 +147,10 @@ std::string cholmod_row(const std::string& name, const BlockSparseMatrix& a, con
   for (int k = 0; k < 10; ++k) a.multiply_rows(0, a.rows(), b, y);
   const double product = ms_since(t) / 10;
   char line[256];
-  std::snprintf(line, sizeof line, "%-10s %7d %9d %10.0f %10.1f %9.2f %9.2f %9.3f %9.3f %9.1f %9.2f\n", name.c_str(),
-                a.rows(), a.nonzero_blocks(), f.factor_entries(), f.factor_flops() / 1e6, first - factor, factor, solve,
-                product, f.peak_bytes() / 1048576.0, f.peak_bytes() / 1024.0 / a.rows());
+  std::snprintf(line, sizeof line, "%-10s %-6s %7d %9d %10.0f %10.1f %9.2f %9.2f %9.3f %9.3f %9.1f %9.2f\n",
+                name.c_str(), ordering == FillOrdering::Metis ? "metis" : "amd", a.rows(), a.nonzero_blocks(),
+                f.factor_entries(), f.factor_flops() / 1e6, first - factor, factor, solve, product,
+                f.peak_bytes() / 1048576.0, f.peak_bytes() / 1024.0 / a.rows());
   return line;
 }
 
@@ -202,11 +204,12 @@ void solver_table(const std::vector<std::string>& scenes, int steps) {
     std::printf("%-10s %7d %9.2e %9d %9.2f %9d %9.2f %9.2f  %s\n", display_name(scene).c_str(), a.rows(),
                 w.last_stats().dt, bj_it, bj_ms, mg_it, mg_ms, mg_setup, levels.c_str());
     std::fflush(stdout);
-    cholmod_rows.push_back(cholmod_row(display_name(scene), a, b));
+    for (const FillOrdering o : {FillOrdering::Metis, FillOrdering::Amd})
+      cholmod_rows.push_back(cholmod_row(display_name(scene), o, a, b));
   }
-  std::printf("\nThe CHOLMOD factor of the same systems (METIS ordering of the block graph; 1 thread, CPU ms):\n");
-  std::printf("%-10s %7s %9s %10s %10s %9s %9s %9s %9s %9s %9s\n", "scene", "blocks", "stored", "nnz(L)", "Mflop",
-              "analyse", "factor", "solve", "product", "peakMB", "kB/block");
+  std::printf("\nThe CHOLMOD factor of the same systems (ordering of the block graph; 1 thread, CPU ms):\n");
+  std::printf("%-10s %-6s %7s %9s %10s %10s %9s %9s %9s %9s %9s %9s\n", "scene", "order", "blocks", "stored", "nnz(L)",
+              "Mflop", "analyse", "factor", "solve", "product", "peakMB", "kB/block");
   for (const std::string& row : cholmod_rows) std::printf("%s", row.c_str());
 }
 

@@ -52,7 +52,7 @@ class CholmodSolver final : public LinearSolver {
 
   // CG iterations a solve may take with the factor it has before the system
   // is factorised anew (CholmodSettings::refactor_iterations).
-  int refactor_iterations = 12;
+  int refactor_iterations = 6;
 
  private:
   SolveReport solve_from(const VecX& b, VecX& x, std::span<const char> changed_rows);

@@ -36,7 +36,7 @@ struct CholmodSettings {
   // before the current one is factorised: the factor is kept while it
   // preconditions well enough that a few iterations (a mat-vec and two
   // triangular solves each) cost less than a factorisation.
-  int refactor_iterations = 12;
+  int refactor_iterations = 6;
 };
 
 // Which solver steps: Auto chooses from the cost the run measures
