@@ -43,10 +43,13 @@ void AutoSolver::choose(const StepSolveInfo& info) {
   pcg_work_ = kPcgIterationWork * static_cast<double>(iterations_);
   pcg_solves_ = solves_;
   pcg_iterations_ = iterations_;
+  const bool long_solves = static_cast<double>(iterations_) > kToDirect * solves_;
+  long_pcg_steps_ = long_solves ? long_pcg_steps_ + 1 : 0;
   if (retry_in_ > 0) {
     --retry_in_;
-  } else if (info.blocks >= kDirectMinBlocks && static_cast<double>(iterations_) > kToDirect * solves_) {
+  } else if (info.blocks >= kDirectMinBlocks && long_pcg_steps_ >= kLongStepsBeforeTrial) {
     on_direct_ = true;
+    long_pcg_steps_ = 0;
     direct_steps_ = 0;
     direct_work_ = 0;
   }

@@ -147,7 +147,7 @@ const ControlSpec kControls[] = {
         "block-Jacobi or multigrid (`preconditioner`), cheap where the blocks' inertia dominates (waves). "
         "`\"cholmod\"`: CG preconditioned with a sparse Cholesky factor (CHOLMOD) kept across open-close "
         "iterations and steps and refreshed after `refactor_iterations`, for stiff systems (walls, slopes). "
-        "`\"auto\"`: PCG, and the factor after a step whose solves took over 30 CG iterations each, kept "
+        "`\"auto\"`: PCG, and the factor after two steps whose solves took over 30 CG iterations each, kept "
         "while its counted work per step stays below PCG's; `m:stats().solver` says which ran. Results "
         "differ between the solvers within the solve tolerance (and what the open-close iteration makes of "
         "that)"),
