@@ -314,13 +314,16 @@ void set_integer_field(lua_State* L, const char* key, long value) {
 }
 
 void push_stats(lua_State* L, const StepStats& s) {
-  lua_createtable(L, 0, 14);
+  lua_createtable(L, 0, 16);
   auto num = [&](const char* k, double v) { set_number_field(L, k, v); };
   auto integer = [&](const char* k, long v) { set_integer_field(L, k, v); };
   num("dt", s.dt);
   integer("open_close_iterations", s.open_close_iterations);
   integer("cg_iterations", s.cg_iterations);
   integer("patch_iterations", s.patch_iterations);
+  lua_pushstring(L, s.solver);
+  lua_setfield(L, -2, "solver");
+  integer("factorisations", s.factorisations);
   integer("step_cuts", s.step_cuts);
   lua_pushstring(L, s.cut_reason.c_str());
   lua_setfield(L, -2, "cut_reason");

@@ -12,6 +12,9 @@ cd "$(dirname "$0")/.."
 # stb, zlib for the PNG encoder, readline for the console) and GoogleTest.
 packages=(g++ cmake make pkg-config libeigen3-dev libtbb-dev liblua5.4-dev
           libosmesa6-dev libstb-dev zlib1g-dev libgtest-dev libreadline-dev
+          # The sparse direct solver: CHOLMOD (SuiteSparse, with METIS) and an
+          # optimised BLAS for its dense kernels.
+          libsuitesparse-dev libopenblas-dev
           # Run: the TrueType font frames and plots are labelled with (σ, τ);
           # without it a bitmap font spells Greek letters with Latin ones.
           fonts-dejavu-core

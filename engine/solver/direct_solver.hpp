@@ -11,6 +11,7 @@ class DirectSolver final : public LinearSolver {
   // Throws dda::Error when the operator has no stored matrix.
   void set_operator(const LinearOperator& a) override;
   SolveReport solve(const VecX& b, VecX& x) override;
+  const char* name() const override { return "ldlt"; }
 
  private:
   const BlockSparseMatrix* a_ = nullptr;

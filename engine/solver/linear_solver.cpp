@@ -3,12 +3,12 @@
 #include <cmath>
 
 #include "core/parallel.hpp"
-#include "solver/pcg.hpp"
+#include "solver/solver_choice.hpp"
 
 namespace dda {
 
 std::unique_ptr<LinearSolver> make_linear_solver(const SolverSettings& /*settings*/) {
-  return std::make_unique<PcgSolver>();
+  return std::make_unique<AutoSolver>();
 }
 
 double deterministic_dot(const VecX& a, const VecX& b) {

@@ -5,27 +5,19 @@
 // carrying on. The step holds a LinearSolver made by make_linear_solver and
 // knows no backend.
 //
-// How another backend slots in (none but PCG is built today):
-//   * A sparse direct factorisation (CHOLMOD, issue 25): a class
-//     CholmodSolver : LinearSolver. Its set_operator asks the operator for
-//     its entries through the capability LinearOperator::stored_matrix()
-//     (the step's contact operator assembles them on that call; an operator
-//     without one answers nullptr, and the solver throws dda::Error naming
-//     the operator). It analyses the pattern once per contact list (the
-//     pattern holds for every open-close iteration of a step: one block per
-//     coupled pair, open contacts included), factorises when the values
-//     change, and solve() is a pair of triangular solves (iterations = 1).
-//     resolve() after a local change may update the factor (rank-k update of
-//     the rows flagged in changed_rows) or refactor. Its settings (ordering,
-//     when to refactor) go into a `CholmodSettings cholmod` member of
-//     SolverSettings (solver_settings.hpp), read in its begin_step; the
-//     controls table gets a row naming the backend, and make_linear_solver a
-//     case. The step, the assembly and the solve regime do not change: a
-//     direct solve reports 1 iteration, which is a short solve.
-//   * As CG's preconditioner instead: a Preconditioner whose setup() asks
-//     stored_matrix() the same way (as Multigrid does).
-//   * A distributed backend (PETSc, block size 6): the same, with the block
-//     rows of stored_matrix() copied into a MATBAIJ matrix.
+// The backends:
+//   * PcgSolver (pcg.hpp): CG with block-Jacobi or multigrid; matrix-free
+//     products, cheap where the blocks' inertia dominates (wave problems).
+//   * CholmodSolver (cholmod_solver.hpp): CG preconditioned with a sparse
+//     Cholesky factor kept across open-close iterations and steps, for stiff
+//     systems (walls, slopes). It asks the operator for its entries through
+//     LinearOperator::stored_matrix().
+//   * AutoSolver (solver_choice.hpp), what make_linear_solver returns: steps
+//     with one of them, chosen each step from the work the run counted
+//     (SolverSettings::kind overrides).
+// A distributed backend (PETSc, block size 6) would copy the block rows of
+// stored_matrix() into a MATBAIJ matrix, with its settings in its own part of
+// SolverSettings and a SolverKind.
 #include <functional>
 #include <memory>
 #include <span>
@@ -45,6 +37,7 @@ struct SolveReport {
   // (PcgSettings::patch_hops), and how many rows that patch had.
   int patch_iterations = 0;
   int patch_rows = 0;
+  int factorisations = 0;  // numeric factorisations of the system (a direct backend)
 };
 
 // What the step knows of its solves, told to the solver once per step before
@@ -78,6 +71,8 @@ class LinearSolver {
   // then recompute the starting residual on those rows alone. The default
   // solves from scratch.
   virtual SolveReport resolve(const VecX& b, VecX& x, std::span<const char> /*changed_rows*/) { return solve(b, x); }
+  // The backend that solves ("pcg", "cholmod"), for the step's stats.
+  virtual const char* name() const = 0;
 
   double tolerance = 1e-10;  // on ‖b − A·x‖ / ‖b‖
   int max_iterations = 1000;

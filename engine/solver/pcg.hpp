@@ -46,6 +46,7 @@ class PcgSolver final : public LinearSolver {
   // hands it the settings and the centroids, and sets patch_hops.
   void begin_step(const SolverSettings& settings, const StepSolveInfo& info) override;
   void set_operator(const LinearOperator& a) override;
+  const char* name() const override { return "pcg"; }
   Preconditioner& preconditioner() { return *pre_; }
   void set_preconditioner(std::unique_ptr<Preconditioner> pre) { pre_ = std::move(pre); }
   SolveReport solve(const VecX& b, VecX& x) override { return solve_from(b, x, {}); }

@@ -28,8 +28,25 @@ struct PcgSettings {
   int patch_hops = 8;
 };
 
+// The sparse direct factorisation (cholmod_solver.hpp).
+enum class FillOrdering { Metis, Amd };  // of the block graph, before the factorisation
+struct CholmodSettings {
+  FillOrdering ordering = FillOrdering::Metis;
+  // CG iterations a solve may take with the factor of an earlier system
+  // before the current one is factorised: the factor is kept while it
+  // preconditions well enough that a few iterations (a mat-vec and two
+  // triangular solves each) cost less than a factorisation.
+  int refactor_iterations = 6;
+};
+
+// Which solver steps: Auto chooses from the cost the run measures
+// (solver_choice.hpp); the others are fixed.
+enum class SolverKind { Auto, Pcg, Cholmod };
+
 struct SolverSettings {
+  SolverKind kind = SolverKind::Auto;
   PcgSettings pcg;
+  CholmodSettings cholmod;
 };
 
 }  // namespace dda

@@ -23,6 +23,8 @@ constexpr ControlRange kZeroEveryCoreOrPositive{0, kInf, false, false, "must be 
 
 constexpr const char* kPlaneNames[] = {"stress", "strain"};                            // PlaneMode order
 constexpr const char* kPreconditionerNames[] = {"auto", "block_jacobi", "multigrid"};  // Preconditioning order
+constexpr const char* kSolverNames[] = {"auto", "pcg", "cholmod"};                     // SolverKind order
+constexpr const char* kFillOrderingNames[] = {"metis", "amd"};                         // FillOrdering order
 
 constexpr ControlSpec number(const char* name, double& (*field)(Controls&), ControlRange range, const char* doc,
                              const char* default_text = nullptr) {
@@ -138,6 +140,27 @@ const ControlSpec kControls[] = {
         "rewritten block. Changes how fast the solve converges; the answer only as far as the loose "
         "open-close solves' stopping points reach it (through the normal force friction uses), or beyond "
         "`cg_tolerance` not at all with `cg_open_close_tolerance = cg_tolerance`"),
+    choice(
+        "solver", kSolverNames, [](const Controls& c) { return static_cast<int>(c.solver.kind); },
+        [](Controls& c, int i) { c.solver.kind = static_cast<SolverKind>(i); },
+        "`\"auto\"`, `\"pcg\"` or `\"cholmod\"`: the linear solver. `\"pcg\"`: conjugate gradients with "
+        "block-Jacobi or multigrid (`preconditioner`), cheap where the blocks' inertia dominates (waves). "
+        "`\"cholmod\"`: CG preconditioned with a sparse Cholesky factor (CHOLMOD) kept across open-close "
+        "iterations and steps and refreshed after `refactor_iterations`, for stiff systems (walls, slopes). "
+        "`\"auto\"`: PCG, and the factor after two steps whose solves took over 30 CG iterations each, kept "
+        "while its counted work per step stays below PCG's; `m:stats().solver` says which ran. Results "
+        "differ between the solvers within the solve tolerance (and what the open-close iteration makes of "
+        "that)"),
+    integer(
+        "refactor_iterations", [](Controls& c) -> int& { return c.solver.cholmod.refactor_iterations; }, kAtLeastOne,
+        "with `solver = \"cholmod\"`: CG iterations a solve may take with the factor of an earlier system "
+        "before the current system is factorised (then the solve goes on from where it got)"),
+    choice(
+        "fill_ordering", kFillOrderingNames,
+        [](const Controls& c) { return static_cast<int>(c.solver.cholmod.ordering); },
+        [](Controls& c, int i) { c.solver.cholmod.ordering = static_cast<FillOrdering>(i); },
+        "`\"metis\"` (nested dissection) or `\"amd\"`: the fill-reducing ordering of the CHOLMOD factor, "
+        "computed on the block graph"),
     choice(
         "preconditioner", kPreconditionerNames,
         [](const Controls& c) { return static_cast<int>(c.solver.pcg.preconditioner); },

@@ -48,6 +48,8 @@ struct StepStats {
   int open_close_iterations = 0;  // one solve each
   int cg_iterations = 0;          // over all rows
   int patch_iterations = 0;       // confined to the patch of a re-solve (PcgSettings::patch_hops)
+  const char* solver = "";        // the backend that solved ("pcg", "cholmod": SolverSettings::kind)
+  int factorisations = 0;         // numeric factorisations of the system (cholmod)
   int step_cuts = 0;
   std::string cut_reason;  // why the last cut was made ("" when none), with the block when one is to blame
   int contacts = 0;

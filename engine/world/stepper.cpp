@@ -11,7 +11,7 @@
 //   │  ├─ PredictStates      warm start; first guess of the contact states
 //   │  ├─ open-close loop, until no contact changes state:
 //   │  │  ├─ Assemble        assembly/contact_terms: rows of the changed contacts
-//   │  │  ├─ Solve           solver/: the LinearSolver (PCG today)
+//   │  │  ├─ Solve           solver/: the LinearSolver (PCG or CHOLMOD)
 //   │  │  └─ CheckContacts   contact/open_close: open, sliding, locked
 //   │  └─ ControlStep        block/motion: g2 bound, contact range, inverted
 //   │                        blocks, penetration → accept, or cut Δt (or widen
@@ -31,7 +31,7 @@
 //   * contact transfer and friction: contact/ (detection carries states
 //     over by identity; open_close.cpp decides states with contact_law.cpp);
 //     what a redo restores is save/restore_contact_states;
-//   * a direct solver: solver/ only (linear_solver.hpp says how).
+//   * another solver backend: solver/ only (linear_solver.hpp says how).
 #include "world/stepper.hpp"
 
 #include <algorithm>
@@ -176,6 +176,7 @@ void Stepper::set_up_solver(const WorldState& w) {
   info.last_step_solves = w.last_stats.open_close_iterations;
   info.last_step_iterations = w.last_stats.cg_iterations;
   solver_->begin_step(c.solver, info);
+  stats_.solver = solver_->name();
   solver_->max_iterations =
       c.cg_max_iterations > 0 ? c.cg_max_iterations : static_cast<int>(60 * w.blocks.count() + 100);
   system_.store_products(regime_.stored_products);
@@ -295,6 +296,7 @@ Rejection Stepper::open_close(WorldState& w) {
     }
     stats_.cg_iterations += report.iterations;
     stats_.patch_iterations += report.patch_iterations;
+    stats_.factorisations += report.factorisations;
     if (!report.finite || !solution_.allFinite()) throw Error(divergence_message(w));
     if (!report.converged) return Rejection::SolverNotConverged;
 

@@ -8,7 +8,9 @@
 --          predict=false starts open-close iterations from the last step's
 --          contact states (predict_states = false); --set patch=0 re-solves
 --          over all rows only (patch_hops = 0), --set patch=N
---          patches of N couplings.
+--          patches of N couplings; --set solver=pcg|cholmod forces the linear
+--          solver (default: auto) and names the row wall(40)[cholmod];
+--          --set gg=1 makes a wall dynamic (row wall(40)gg1).
 -- Run:     build/dda run scripts/bench/bench.lua --set scene=wall --set n=20 --set threads=2 [--set csv=FILE]
 --          (scripts/bench/run.sh runs the whole table, one process per row so
 --          that each row's peak memory is its own).
@@ -31,6 +33,8 @@ local csv = dda.param("csv", "")
 local pre = dda.param("pre", "")  -- preconditioner; "" keeps the scene's (auto)
 local predict = dda.param("predict", true)  -- false: open-close iterations start from the last step's states
 local patch = dda.param("patch", -1)  -- re-solve patch hops; -1 keeps the engine's default
+local solver = dda.param("solver", "")  -- "pcg" or "cholmod"; "" keeps the automatic choice
+local gg = dda.param("gg", -1)  -- the dynamic parameter; -1 keeps the scene's
 
 local m, name
 if scene == "wall" then
@@ -45,13 +49,22 @@ else
   error("unknown scene '" .. tostring(scene) .. "' (wall, blast, bar)")
 end
 
+if gg >= 0 then
+  m:controls{ gg = gg }
+  name = string.format("%sgg%g", name, gg)
+end
 if warmup ~= 2 then name = string.format("%s@%d", name, warmup) end
+if solver ~= "" then
+  m:controls{ solver = solver }
+  name = string.format("%s[%s]", name, solver)
+end
 if pre ~= "" then m:controls{ preconditioner = pre } end
 m:controls{ predict_states = predict }
 if patch >= 0 then m:controls{ patch_hops = patch } end
 m:step(warmup)
 local sum = { t_detect = 0, t_assemble = 0, t_solve = 0, t_check = 0, t_update = 0, t_total = 0,
-              open_close_iterations = 0, cg_iterations = 0, patch_iterations = 0, step_cuts = 0 }
+              open_close_iterations = 0, cg_iterations = 0, patch_iterations = 0, step_cuts = 0,
+              factorisations = 0 }
 for _ = 1, steps do
   m:step(1)
   local s = m:stats()
@@ -79,9 +92,10 @@ local row = string.format("%s,%d,%d,%d,%d,%.3f,%.0f,%.2f,%.1f,%d,%.3f,%.3f,%.3f,
   name, threads, blocks, contacts, steps, ms, blocks * steps / total, sum.open_close_iterations / steps,
   sum.cg_iterations / steps, sum.step_cuts, share(sum.t_detect), share(sum.t_assemble),
   share(sum.t_solve + sum.t_check), share(sum.t_update), share(other), peak_rss_mb(), sum.patch_iterations / steps)
-print(string.format("%-10s threads %d  blocks %6d  contacts %7d  %9.2f ms/step  %9.0f block-steps/s  oc %.2f  cg %.1f (+%.1f on patches)  cuts %d",
+print(string.format("%-10s threads %d  blocks %6d  contacts %7d  %9.2f ms/step  %9.0f block-steps/s  oc %.2f  cg %.1f (+%.1f on patches)  cuts %d  %s (%.2f factorisations/step)",
   name, threads, blocks, contacts, ms, blocks * steps / total, sum.open_close_iterations / steps,
-  sum.cg_iterations / steps, sum.patch_iterations / steps, sum.step_cuts))
+  sum.cg_iterations / steps, sum.patch_iterations / steps, sum.step_cuts, m:stats().solver,
+  sum.factorisations / steps))
 if csv ~= "" then
   local f = assert(io.open(csv, "a"))
   f:write(row, "\n")

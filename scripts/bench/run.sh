@@ -8,6 +8,9 @@
 #   SCENES="wall:200:3" scripts/bench/run.sh     # a third field: timed steps (default 10)
 #   SCENES="blast:0.5:50:2500" scripts/bench/run.sh   # a fourth: untimed steps first (default 2);
 #                                                     # the row's scene is then blast(0.5)@2500
+#   SCENES="wall:40:10:2:cholmod:1" scripts/bench/run.sh  # a fifth: the solver (pcg or cholmod;
+#                                                     # default auto), a sixth: gg; the row's
+#                                                     # scene is then wall(40)gg1[cholmod]
 #   REPEAT=3 SCENES="blast:0.5" scripts/bench/run.sh
 #   OUT=/tmp/table.csv scripts/bench/run.sh      # the table to that file instead
 #
@@ -30,7 +33,11 @@ repeat=${REPEAT:-1}
 # untimed ones). blast:2:50:2500 and blast:0.5:50:2500 time steps 2501-2550,
 # late in the run where most joints slide: the early-step rows alone would
 # hide what a whole run costs.
-default_scenes="wall:10 wall:20 wall:40 wall:100:5 wall:200:3 blast:2:5000 blast:2:50:2500 blast:1 blast:0.5 blast:0.5:50:2500 blast:0.25:5 bar"
+# The solver rows: the walls with each solver side by side, quasi-static
+# and dynamic (gg = 1).
+solver_rows="wall:20:10:2:pcg wall:20:10:2:cholmod wall:40:10:2:pcg wall:40:10:2:cholmod
+  wall:20:10:2:pcg:1 wall:20:10:2:cholmod:1 wall:40:10:2:pcg:1 wall:40:10:2:cholmod:1"
+default_scenes="wall:10 wall:20 wall:40 wall:100:5 wall:200:3 $solver_rows blast:2:5000 blast:2:50:2500 blast:1 blast:0.5 blast:0.5:50:2500 blast:0.25:5 bar"
 scenes=${SCENES:-$default_scenes}
 cpu=$(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ *//')
 machine=$(echo "$cpu" | sed -E 's/\((R|TM|tm)\)//g; s/ (CPU|Processor)\b//g; s/@.*//' | tr 'A-Z' 'a-z' | tr -cs 'a-z0-9' '-' | sed 's/^-*//; s/-*$//')-$(nproc)c
@@ -50,7 +57,7 @@ table=$(mktemp)
 runs=$(mktemp -d)
 trap 'rm -rf "$runs" "$table"' EXIT
 for s in $scenes; do
-  IFS=: read -r name arg steps skip <<< "$s"
+  IFS=: read -r name arg steps skip solver gg <<< "$s"
   case $name in
     wall) args=(--set scene=wall --set n="$arg" --set steps="${steps:-10}") ;;
     blast) args=(--set scene=blast --set h="$arg" --set steps="${steps:-10}") ;;
@@ -58,6 +65,8 @@ for s in $scenes; do
     *) echo "run.sh: unknown scene '$name' (wall, blast, bar)" >&2; exit 2 ;;
   esac
   [[ -z $skip ]] || args+=(--set warmup="$skip")
+  [[ -z $solver ]] || args+=(--set solver="$solver")
+  [[ -z $gg ]] || args+=(--set gg="$gg")
   rm -f "$runs"/*.csv
   for ((r = 1; r <= repeat; ++r)); do
     for t in 1 2; do

@@ -1,0 +1,91 @@
+#include "solver/solver_choice.hpp"
+
+namespace dda {
+
+AutoSolver::AutoSolver() = default;
+
+void AutoSolver::begin_step(const SolverSettings& settings, const StepSolveInfo& info) {
+  const bool last_on_pcg = !on_direct_;
+  choose(info);
+  if (settings.kind != SolverKind::Auto) on_direct_ = settings.kind == SolverKind::Cholmod;
+  solves_ = factorisations_ = 0;
+  iterations_ = 0;
+  if (on_direct_) {
+    if (!direct_) direct_ = std::make_unique<CholmodSolver>();
+    direct_->begin_step(settings, info);
+    return;
+  }
+  // The PCG chooses its preconditioner from its own last step.
+  StepSolveInfo own = info;
+  if (!last_on_pcg) {
+    own.last_step_solves = pcg_solves_;
+    own.last_step_iterations = pcg_iterations_;
+  }
+  pcg_.begin_step(settings, own);
+}
+
+// Closes the books on the step just done (its counts) and picks the backend
+// of the next one (the header's rules 1 and 2).
+void AutoSolver::choose(const StepSolveInfo& info) {
+  if (solves_ == 0) return;  // no step yet
+  if (on_direct_) {
+    const double work = direct_step_work();
+    ++direct_steps_;
+    direct_work_ = direct_steps_ <= kTrialSteps ? direct_work_ + (work - direct_work_) / direct_steps_
+                                                : 0.8 * direct_work_ + 0.2 * work;
+    if (direct_steps_ >= kTrialSteps && direct_work_ > pcg_work_) {
+      on_direct_ = false;
+      retry_in_ = retry_wait_;
+      retry_wait_ *= 2;
+    }
+    return;
+  }
+  pcg_work_ = kPcgIterationWork * static_cast<double>(iterations_);
+  pcg_solves_ = solves_;
+  pcg_iterations_ = iterations_;
+  const bool long_solves = static_cast<double>(iterations_) > kToDirect * solves_;
+  long_pcg_steps_ = long_solves ? long_pcg_steps_ + 1 : 0;
+  if (retry_in_ > 0) {
+    --retry_in_;
+  } else if (info.blocks >= kDirectMinBlocks && long_pcg_steps_ >= kLongStepsBeforeTrial) {
+    on_direct_ = true;
+    long_pcg_steps_ = 0;
+    direct_steps_ = 0;
+    direct_work_ = 0;
+  }
+}
+
+double AutoSolver::direct_step_work() const {
+  const CholmodFactor& f = direct_->factor();
+  const double product_flops = 72.0 * f.stored_blocks();
+  if (!(product_flops > 0)) return static_cast<double>(iterations_);
+  const double solve = kSolveFlopWeight * 4 * f.factor_entries() / product_flops;
+  // The factorisation, and the stored matrix assembled for it (about two products).
+  const double factorisation = kFactorFlopWeight * f.factor_flops() / product_flops + 2;
+  return static_cast<double>(iterations_) * (1 + solve) + factorisations_ * factorisation;
+}
+
+SolveReport AutoSolver::counted(const SolveReport& r) {
+  ++solves_;
+  iterations_ += r.iterations;
+  factorisations_ += r.factorisations;
+  return r;
+}
+
+SolveReport AutoSolver::solve(const VecX& b, VecX& x) {
+  LinearSolver& s = current();
+  s.tolerance = tolerance;
+  s.max_iterations = max_iterations;
+  s.monitor = monitor;
+  return counted(s.solve(b, x));
+}
+
+SolveReport AutoSolver::resolve(const VecX& b, VecX& x, std::span<const char> changed_rows) {
+  LinearSolver& s = current();
+  s.tolerance = tolerance;
+  s.max_iterations = max_iterations;
+  s.monitor = monitor;
+  return counted(s.resolve(b, x, changed_rows));
+}
+
+}  // namespace dda

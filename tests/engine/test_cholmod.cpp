@@ -1,0 +1,227 @@
+// The CHOLMOD factor and solver (solver/cholmod_factor.hpp,
+// solver/cholmod_solver.hpp) on systems the engine assembled for the
+// benchmark brick walls, and the automatic solver choice
+// (solver/solver_choice.hpp): the factor must solve like Eigen's LDLᵀ, the
+// solver agree with PCG within the solve tolerance, keep its factor across
+// solves and refactorise past its iteration bound, give the same bits for any
+// thread count, and Auto must pick the factor for walls and keep PCG for
+// waves.
+#include <gtest/gtest.h>
+#include <tbb/task_arena.h>
+
+#include <cstring>
+#include <string>
+
+#include "../scenes.hpp"
+#include "core/error.hpp"
+#include "solver/cholmod_solver.hpp"
+#include "solver/direct_solver.hpp"
+#include "solver/pcg.hpp"
+
+using namespace dda;
+
+namespace {
+
+// A wall stepped with PCG on one thread; its last system A·D = F.
+struct WallSystem {
+  World world;
+  explicit WallSystem(int n, int steps = 3, double gg = 0) : world(test::brick_wall(n)) {
+    world.controls().threads = 1;
+    world.controls().gg = gg;
+    world.controls().solver.kind = SolverKind::Pcg;
+    for (int s = 0; s < steps; ++s) world.step();
+  }
+  const BlockSparseMatrix& a() const { return world.last_matrix(); }
+  const VecX& b() const { return world.last_rhs(); }
+};
+
+VecX ldlt_solution(const BlockSparseMatrix& a, const VecX& b) {
+  DirectSolver direct;
+  direct.set_operator(a);
+  VecX x;
+  EXPECT_TRUE(direct.solve(b, x).converged);
+  return x;
+}
+
+double relative_difference(const VecX& x, const VecX& reference) { return (x - reference).norm() / reference.norm(); }
+
+double relative_residual(const BlockSparseMatrix& a, const VecX& b, const VecX& x) {
+  VecX ax;
+  a.multiply(x, ax);
+  return (b - ax).norm() / b.norm();
+}
+
+// An operator without stored entries.
+class MatrixFreeOnly final : public LinearOperator {
+ public:
+  int rows() const override { return 1; }
+  Mat6 diagonal_block(int) const override { return Mat6::Identity(); }
+  void multiply_rows(int, int, const VecX& x, VecX& y) const override { y = x; }
+};
+
+}  // namespace
+
+// Reference: Eigen's simplicial LDLᵀ of the same matrix (an exact method);
+// both are backward stable, so they agree to about the condition number ×
+// machine epsilon of the residual: 1e-8 of the solution is far above that
+// round-off (measured: 1e-12) and far below any error of substance.
+TEST(Cholmod, FactorSolvesTheWallSystemAsLdltDoes) {
+  const WallSystem s(10);
+  const VecX reference = ldlt_solution(s.a(), s.b());
+  for (const FillOrdering ordering : {FillOrdering::Metis, FillOrdering::Amd}) {
+    CholmodFactor f;
+    f.ordering = ordering;
+    ASSERT_TRUE(f.factorise(s.a()));
+    VecX x;
+    f.solve(s.b(), x);
+    EXPECT_LE(relative_difference(x, reference), 1e-8);
+    EXPECT_EQ(f.analyses(), 1);
+    EXPECT_GT(f.factor_entries(), 0);
+    EXPECT_GT(f.factor_flops(), 0);
+  }
+}
+
+// The same system solved by the CHOLMOD solver and by PCG (block-Jacobi),
+// both to the relative residual 1e-10: each meets it, and they agree with
+// each other as closely as the residual bound allows on this system (the
+// LDLᵀ solution is the reference for both: 1e-6 of the solution).
+TEST(Cholmod, SolverAgreesWithPcgOnWalls) {
+  for (const double gg : {0.0, 1.0}) {
+    const WallSystem s(12, 3, gg);
+    const VecX reference = ldlt_solution(s.a(), s.b());
+    CholmodSolver chol;
+    chol.tolerance = 1e-10;
+    chol.set_operator(s.a());
+    VecX xc = VecX::Zero(s.b().size());
+    const SolveReport rc = chol.solve(s.b(), xc);
+    EXPECT_TRUE(rc.converged);
+    EXPECT_EQ(rc.factorisations, 1);
+    EXPECT_LE(rc.iterations, 3) << "a fresh factor is (almost) the exact inverse";
+    PcgSolver pcg;
+    pcg.tolerance = 1e-10;
+    pcg.max_iterations = 100000;
+    pcg.set_operator(s.a());
+    VecX xp = VecX::Zero(s.b().size());
+    EXPECT_TRUE(pcg.solve(s.b(), xp).converged);
+    EXPECT_LE(relative_residual(s.a(), s.b(), xc), 1e-10);
+    EXPECT_LE(relative_difference(xc, xp), 1e-6) << "gg = " << gg;
+    EXPECT_LE(relative_difference(xc, reference), 1e-6) << "gg = " << gg;
+  }
+}
+
+// The factor of one system preconditions the next (a later step's): no new
+// factorisation while CG stays within refactor_iterations, a new one (and
+// the solve still converged) when the bound is 1.
+TEST(Cholmod, KeepsItsFactorAndRefactorisesPastTheBound) {
+  WallSystem s(10);
+  const BlockSparseMatrix first = s.a();
+  const VecX b1 = s.b();
+  s.world.step();
+  const BlockSparseMatrix& second = s.a();
+  ASSERT_EQ(second.rows(), first.rows());
+  for (const int bound : {40, 1}) {
+    CholmodSolver chol;
+    chol.tolerance = 1e-10;
+    chol.refactor_iterations = bound;
+    chol.set_operator(first);
+    VecX x = VecX::Zero(b1.size());
+    ASSERT_TRUE(chol.solve(b1, x).converged);
+    chol.set_operator(second);
+    x.setZero();
+    const SolveReport r = chol.solve(s.b(), x);
+    EXPECT_TRUE(r.converged);
+    EXPECT_LE(relative_residual(second, s.b(), x), 1e-10);
+    if (bound == 1) {
+      EXPECT_EQ(r.factorisations, 1);
+    } else {
+      EXPECT_EQ(r.factorisations, 0) << r.iterations << " iterations with the kept factor";
+      EXPECT_GT(r.iterations, 1) << "the kept factor is not the exact inverse of the new system";
+    }
+    EXPECT_EQ(chol.factor().analyses(), 1) << "the pattern held: one symbolic analysis";
+  }
+}
+
+// Stepped with the factor, a wall keeps it across open-close iterations and
+// steps: fewer factorisations than solves.
+TEST(Cholmod, StepsFactoriseLessOftenThanTheySolve) {
+  World w = test::brick_wall(10);
+  w.controls().threads = 1;
+  w.controls().solver.kind = SolverKind::Cholmod;
+  int solves = 0, factorisations = 0;
+  for (int s = 0; s < 6; ++s) {
+    const StepStats st = w.step();
+    EXPECT_EQ(std::string(st.solver), "cholmod");
+    solves += st.open_close_iterations;
+    factorisations += st.factorisations;
+  }
+  EXPECT_GE(factorisations, 1);
+  EXPECT_LT(2 * factorisations, solves);
+}
+
+TEST(Cholmod, SameSolutionBitsForOneTwoAndFourThreads) {
+  const WallSystem s(20, 1);
+  std::vector<VecX> solutions;
+  for (int threads : {1, 2, 4, 1}) {
+    tbb::task_arena arena(threads);
+    arena.execute([&] {
+      CholmodSolver chol;
+      chol.set_operator(s.a());
+      VecX x = VecX::Zero(s.b().size());
+      EXPECT_TRUE(chol.solve(s.b(), x).converged);
+      solutions.push_back(x);
+    });
+  }
+  for (std::size_t k = 1; k < solutions.size(); ++k)
+    EXPECT_EQ(std::memcmp(solutions[k].data(), solutions[0].data(), sizeof(double) * solutions[0].size()), 0)
+        << "run " << k;
+}
+
+// As the other determinism tests: the whole state after some steps, quasi-
+// static and dynamic (where contacts open and close, and the factor is
+// refreshed within steps).
+TEST(Cholmod, WorldStateHashIsTheSameForOneTwoAndFourThreads) {
+  for (const double gg : {0.0, 1.0}) {
+    auto run = [gg](int threads) {
+      World w = test::brick_wall(8);
+      w.controls().threads = threads;
+      w.controls().gg = gg;
+      w.controls().solver.kind = SolverKind::Cholmod;
+      for (int s = 0; s < 5; ++s) w.step();
+      return w.state_hash();
+    };
+    const std::uint64_t h1 = run(1);
+    EXPECT_EQ(run(2), h1) << "gg = " << gg;
+    EXPECT_EQ(run(4), h1) << "gg = " << gg;
+  }
+}
+
+TEST(Cholmod, MatrixFreeOperatorIsAnErrorNamingTheCause) {
+  CholmodSolver chol;
+  MatrixFreeOnly op;
+  chol.set_operator(op);
+  VecX b = VecX::Ones(6), x = VecX::Zero(6);
+  try {
+    chol.solve(b, x);
+    FAIL() << "no error";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("matrix-free"), std::string::npos) << e.what();
+  }
+}
+
+// Auto (solver_choice.hpp): a wall's solves take hundreds of PCG iterations,
+// so it moves to the factor after two steps; the kicked bar's take a few, so
+// it keeps PCG. A fixed kind overrides.
+TEST(SolverChoice, WallsMoveToTheFactorAndWavesKeepPcg) {
+  World wall = test::brick_wall(10);
+  wall.controls().threads = 1;
+  EXPECT_EQ(std::string(wall.step().solver), "pcg");
+  EXPECT_EQ(std::string(wall.step().solver), "pcg");
+  EXPECT_EQ(std::string(wall.step().solver), "cholmod");
+  EXPECT_EQ(std::string(wall.step().solver), "cholmod");
+  wall.controls().solver.kind = SolverKind::Pcg;
+  EXPECT_EQ(std::string(wall.step().solver), "pcg");
+
+  World bar = test::kicked_bar(20, 5);
+  bar.controls().threads = 1;
+  for (int s = 0; s < 10; ++s) EXPECT_EQ(std::string(bar.step().solver), "pcg") << "step " << s + 1;
+}
