@@ -1,6 +1,6 @@
 // Boundaries and prescribed displacements on edges and points (the paper's
 // VBC, SBC and DHI, as implemented by the engine):
-//   edges:viscous_boundary()                      → dda.Boundary
+//   edges:viscous_boundary{rock = r, vx = h, vy = h} → dda.Boundary
 //   edges:spring_boundary{p = ..., per_length = true} → dda.Boundary
 //   edges:target{displacement = h | velocity = h, direction = {dx, dy}} → dda.Target
 //   m:target{at = {x, y}, block = b, direction = {dx, dy}, displacement = h | velocity = h} → dda.Target
@@ -27,10 +27,37 @@ EdgesSelf self_edges(lua_State* L, const char* call) {
   return s;
 }
 
-// edges:viscous_boundary() → Boundary
+// A history the engine evaluates itself (a number or a table, not a function).
+History engine_history(const Options& o, const char* key) {
+  lua_State* L = o.state();
+  o.push(key);
+  if (lua_type(L, -1) == LUA_TFUNCTION)
+    fail(o.call(), ": option '", key,
+         "' must be a number or a table of {t, v} pairs (the engine evaluates it "
+         "at each step's end), not a function");
+  const TimeInput input = TimeInput::parse(L, -1, o.call(), msg("option '", key, "'"));
+  lua_pop(L, 1);
+  return input.engine_history();
+}
+
+// edges:viscous_boundary{rock = r, vx = h, vy = h} → Boundary (all options optional)
 int es_viscous(lua_State* L) {
   EdgesSelf s = self_edges(L, "edges:viscous_boundary");
-  const int id = s.model->world().add_viscous_boundary(s.edges);
+  if (lua_isnoneornil(L, 2)) {  // edges:viscous_boundary(): no options
+    lua_settop(L, 1);
+    lua_newtable(L);
+  }
+  const Options o(L, 2, "edges:viscous_boundary", {"rock", "vx", "vy"});
+  int medium = -1;
+  if (o.has("rock")) {
+    o.push("rock");
+    medium = check_rock(L, -1, s.model, o.call(), "option 'rock'");
+    lua_pop(L, 1);
+  }
+  const int id = s.model->world().add_viscous_boundary(s.edges, medium);
+  if (o.has("vx") || o.has("vy"))
+    s.model->world().set_incident_velocity(id, o.has("vx") ? engine_history(o, "vx") : History(),
+                                           o.has("vy") ? engine_history(o, "vy") : History());
   push_model_of(L, 1);
   push_handle(L, -1, kBoundaryType, id);
   return 1;
@@ -260,7 +287,12 @@ int tg_tostring(lua_State* L) {
 
 void register_boundaries(lua_State* L) {
   static const Method edge_methods[] = {
-      {"viscous_boundary", guarded<es_viscous>, "edges:viscous_boundary() → Boundary"},
+      {"viscous_boundary", guarded<es_viscous>,
+       "edges:viscous_boundary{rock = r, vx = h, vy = h} → Boundary. Dashpots ρC_P (normal) and ρC_S (along the "
+       "edge) that absorb waves leaving the model (Eqs. 6-12); ρ and the wave speeds are those of each edge's block, "
+       "or of rock material r (the half-space below a compliant base). With vx, vy (histories of the incident "
+       "wave's particle velocity, m/s, a number or {{t, v}, ...}) it is a compliant base: the wave comes in as the "
+       "traction 2ρC·v_in (vertically incident S: vx on a horizontal base; P: vy). See docs/seismic.md."},
       {"spring_boundary", guarded<es_spring>,
        "edges:spring_boundary{p = stiffness, per_length = true} → Boundary (per_length: Eq. 22, spring p·l at each "
        "end; false: Eq. 21, p alone)"},

@@ -85,7 +85,14 @@ class World {
   // VBC (Eqs. 6–12): at each end of each edge, a dashpot pair over half the
   // edge length: traction −ρ(C_P v_n n + C_S v_s s), n the outward normal,
   // with ρ, C_P = sqrt((K + 4G/3)/ρ), C_S = sqrt(G/ρ) of the edge's block.
-  int add_viscous_boundary(const std::vector<EdgeRef>& edges);
+  // With a rock material `medium` (≥ 0) ρ, C_P, C_S are that material's: the
+  // half-space beyond a compliant base.
+  int add_viscous_boundary(const std::vector<EdgeRef>& edges, int medium = -1);
+  // A compliant (quiet) base: the viscous boundary also brings in a wave of
+  // particle velocity (vx(t), vy(t)) from outside, traction 2ρC·v_in
+  // (vertically incident S: vx on a horizontal base; P: vy). See
+  // docs/seismic.md.
+  void set_incident_velocity(int boundary, History vx, History vy);
   // SBC (Eq. 22): at each end of each edge a spring p·l·TᵀT (Eq. 21's p
   // without the edge length when per_length is false). As the paper says, it
   // is the fixed-point sub-matrix without the fixed point's residual term: it
