@@ -68,6 +68,13 @@ void Boundaries::set_target_velocity_history(int id, History velocity) {
   t.mode = DisplacementTarget::Velocity;
 }
 
+void Boundaries::set_target_acceleration_history(int id, History acceleration) {
+  DisplacementTarget& t = target(id);
+  if (t.direction.norm() == 0) throw Error(msg("displacement target ", id, ": a history needs a direction"));
+  t.history = std::move(acceleration);
+  t.mode = DisplacementTarget::Acceleration;
+}
+
 Vec2 Boundaries::target_point_displacement(int id) const { return target(id).point - target(id).origin; }
 Vec2 Boundaries::target_value(int id) const { return target(id).target; }
 
@@ -154,6 +161,7 @@ void Boundaries::add_terms(double t_end, double stiff_spring, const Blocks& bloc
   for (DisplacementTarget& t : targets_) {
     if (t.mode == DisplacementTarget::Displacement) t.target = t.history.value(t_end) * t.direction;
     if (t.mode == DisplacementTarget::Velocity) t.target = t.history.integral(t_end) * t.direction;
+    if (t.mode == DisplacementTarget::Acceleration) t.target = t.history.double_integral(t_end) * t.direction;
     if (t.direction.norm() > 0) {
       // Only the component along the direction is driven: goal = point moved
       // along the direction by what is still missing.

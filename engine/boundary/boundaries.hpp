@@ -28,9 +28,10 @@ class Boundaries {
   // DHI: a stiff spring pulls the material point to start + target; with a
   // direction (normalised) along it only, the target a magnitude along it.
   int add_displacement_target(const Blocks& blocks, BlockId b, const Vec2& point, const Vec2& direction);
-  void set_target_displacement(int id, const Vec2& target);    // along a direction: target.x() is the magnitude
-  void set_target_history(int id, History displacement);       // magnitude along the direction
-  void set_target_velocity_history(int id, History velocity);  // integrated to displacement
+  void set_target_displacement(int id, const Vec2& target);            // along a direction: target.x() is the magnitude
+  void set_target_history(int id, History displacement);               // magnitude along the direction
+  void set_target_velocity_history(int id, History velocity);          // integrated to displacement
+  void set_target_acceleration_history(int id, History acceleration);  // integrated twice, from rest
   Vec2 target_point_displacement(int id) const;
   Vec2 target_value(int id) const;
 
@@ -65,7 +66,7 @@ class Boundaries {
     Vec2 direction;              // zero direction: both components
     Vec2 target = Vec2::Zero();  // current target (vector)
     History history;
-    enum { Fixed, Displacement, Velocity } mode = Fixed;
+    enum { Fixed, Displacement, Velocity, Acceleration } mode = Fixed;
   };
   // A VBC dashpot (matrix c, N·s/m) or an SBC spring (stiffness k, N/m) at a material point.
   struct BoundaryPoint {

@@ -159,6 +159,10 @@ void World::set_target_history(int id, History displacement) {
 void World::set_target_velocity_history(int id, History velocity) {
   s_.boundaries.set_target_velocity_history(id, std::move(velocity));
 }
+
+void World::set_target_acceleration_history(int id, History acceleration) {
+  s_.boundaries.set_target_acceleration_history(id, std::move(acceleration));
+}
 Vec2 World::target_point_displacement(int id) const { return s_.boundaries.target_point_displacement(id); }
 Vec2 World::target_value(int id) const { return s_.boundaries.target_value(id); }
 

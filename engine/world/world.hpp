@@ -77,8 +77,11 @@ class World {
   void set_target_displacement(int id, const Vec2& target);    // along a direction: target.x() is the magnitude
   void set_target_history(int id, History displacement);       // magnitude along the direction
   void set_target_velocity_history(int id, History velocity);  // integrated to displacement
-  Vec2 target_point_displacement(int id) const;                // the material point's displacement so far
-  Vec2 target_value(int id) const;                             // the last target applied (vector)
+  // Integrated twice from rest (a rigid shaken base driven by a ground
+  // acceleration; exact for the piecewise-linear history).
+  void set_target_acceleration_history(int id, History acceleration);
+  Vec2 target_point_displacement(int id) const;  // the material point's displacement so far
+  Vec2 target_value(int id) const;               // the last target applied (vector)
 
   // Fixed boundary: fixed points at both ends of each edge.
   void fix_edges(const std::vector<EdgeRef>& edges);

@@ -134,3 +134,20 @@ TEST(GroundMotion, BadInputNamesTheCause) {
   EXPECT_NE(message([&] { GroundMotion::read_accelerogram(kElCentro).baseline_corrected(9); }).find("0 (none) to 6"),
             std::string::npos);
 }
+
+TEST(GroundMotion, HistoryDoubleIntegralIsExactForPiecewiseLinear) {
+  // Reference: by hand for 0 → 2 (t = 1) → 0 (t = 3): t³/3 up to t = 1, then
+  // 1/3 + s + s² − s³/6 (s = t − 1), then 5 + 3(t − 3). A shaken base driven
+  // by an acceleration history (target acceleration = h) follows it.
+  const History h({{0, 0}, {1, 2}, {3, 0}});
+  EXPECT_NEAR(h.double_integral(0.5), 0.125 / 3, 1e-15);
+  EXPECT_NEAR(h.double_integral(1), 1.0 / 3, 1e-15);
+  EXPECT_NEAR(h.double_integral(2), 1.0 / 3 + 1 + 1 - 1.0 / 6, 1e-14);
+  EXPECT_NEAR(h.double_integral(3), 5, 1e-14);
+  EXPECT_NEAR(h.double_integral(4), 8, 1e-14);
+  // And the ground motion's displacement at its samples.
+  const GroundMotion g = GroundMotion::read_accelerogram(kElCentro);
+  const History a = g.acceleration_history();
+  for (std::size_t i = 0; i < g.size(); i += 101)
+    EXPECT_NEAR(a.double_integral(static_cast<double>(i) * g.dt()), g.displacement()[i], 1e-12);
+}

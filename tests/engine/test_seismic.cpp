@@ -48,7 +48,9 @@ struct ShakenIncline {
   BlockId base, block;
   std::vector<int> targets;
   double alpha;
-  ShakenIncline(double alpha_deg, double phi_deg, const History& ground_displacement, double dt) {
+  // The base follows the ground's displacement history, or with
+  // by_acceleration the acceleration history integrated twice by the engine.
+  ShakenIncline(double alpha_deg, double phi_deg, const GroundMotion& ground, double dt, bool by_acceleration = false) {
     alpha = alpha_deg * M_PI / 180;
     const RockMaterial rock = test::granite();
     const int r = w.add_rock_material(rock);
@@ -63,7 +65,10 @@ struct ShakenIncline {
         {on_slope(d0, gap), on_slope(d0 + size, gap), on_slope(d0 + size, gap + size), on_slope(d0, gap + size)}, r);
     for (const Vec2& p : std::vector<Vec2>{{0.2, -0.8}, {L * s.x() - 0.2, -0.8}, {L * s.x() - 0.2, L * s.y() - 0.5}}) {
       targets.push_back(w.add_displacement_target(base, p, Vec2(1, 0)));
-      w.set_target_history(targets.back(), ground_displacement);
+      if (by_acceleration)
+        w.set_target_acceleration_history(targets.back(), ground.acceleration_history());
+      else
+        w.set_target_history(targets.back(), ground.displacement_history());
       w.set_target_displacement(w.add_displacement_target(base, p, Vec2(0, 1)), Vec2::Zero());
     }
     Controls& c = w.controls();
@@ -104,7 +109,7 @@ TEST(NewmarkSlidingBlock, SineAboveAndBelowYield) {
   const double a_y = kG * std::tan((phi - alpha) * M_PI / 180);
   for (const double ratio : {2.0, 0.8}) {
     const GroundMotion g = sine_motion(ratio * a_y, 2.0, 0.1, 1.1, dt);
-    ShakenIncline model(alpha, phi, g.displacement_history(), dt);
+    ShakenIncline model(alpha, phi, g, dt);
     model.run_to(t_end);
     const History a = g.acceleration_history();
     const double reference =
@@ -112,6 +117,10 @@ TEST(NewmarkSlidingBlock, SineAboveAndBelowYield) {
     if (ratio > 1) {
       EXPECT_GT(reference, 0.05);  // it does slide: 6.3 cm
       EXPECT_NEAR(model.slip(), reference, 0.05 * reference);
+      // The base driven by the acceleration itself (target acceleration = h).
+      ShakenIncline by_acceleration(alpha, phi, g, dt, true);
+      by_acceleration.run_to(t_end);
+      EXPECT_NEAR(by_acceleration.slip(), reference, 0.05 * reference);
     } else {
       EXPECT_EQ(reference, 0);
       EXPECT_LT(std::abs(model.slip()), 1e-5);
@@ -129,7 +138,7 @@ TEST(NewmarkSlidingBlock, ElCentroRecord) {
                                                          "/data/imperial_valley_1979_el_centro_array7_S50W.dat")
                              .baseline_corrected(2)
                              .resampled(dt);
-  ShakenIncline model(alpha, phi, g.displacement_history(), dt);
+  ShakenIncline model(alpha, phi, g, dt);
   model.run_to(t_end);
   const History a = g.acceleration_history();
   const double reference =
