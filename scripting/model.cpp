@@ -196,6 +196,9 @@ void ScriptModel::hand_over(ScriptTarget& t, lua_State* L) {
     case ScriptTarget::Mode::Velocity:
       for (int id : t.world_ids) world_->set_target_velocity_history(id, t.input.engine_history());
       break;
+    case ScriptTarget::Mode::Acceleration:
+      for (int id : t.world_ids) world_->set_target_acceleration_history(id, t.input.engine_history());
+      break;
   }
 }
 

@@ -75,7 +75,7 @@ struct ScriptPointLoad {
 // Prescribed displacements (the paper's DHI): engine targets at material
 // points, all driven by one input.
 struct ScriptTarget {
-  enum class Mode { Vector, Displacement, Velocity };
+  enum class Mode { Vector, Displacement, Velocity, Acceleration };
   std::vector<int> world_ids;
   Mode mode = Mode::Vector;
   Vec2 vector = Vec2::Zero();  // Mode::Vector

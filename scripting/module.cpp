@@ -175,6 +175,7 @@ int open_module(lua_State* L) {
   lua_newtable(L);
   set_methods(L, functions);
   register_render_functions(L);
+  register_ground_motion_functions(L);
   lua_pushliteral(L, DDA_VERSION_TEXT);
   lua_setfield(L, -2, "version");
   const std::string fields = field_list();

@@ -140,10 +140,11 @@ void register_block(lua_State* L);     // dda.Block and dda.BlockSet
 void register_edges(lua_State* L);     // dda.EdgeSet
 void register_materials(lua_State* L);
 void register_monitor(lua_State* L);
-void register_loads(lua_State* L);             // dda.PointLoad and dda.Pressure
-void register_boundaries(lua_State* L);        // dda.Boundary, dda.Target (after register_edges)
-void register_render(lua_State* L);            // model render methods, when the renderer is built
-void register_render_functions(lua_State* L);  // dda.plot into the module table at the top
+void register_loads(lua_State* L);                    // dda.PointLoad and dda.Pressure
+void register_boundaries(lua_State* L);               // dda.Boundary, dda.Target (after register_edges)
+void register_render(lua_State* L);                   // model render methods, when the renderer is built
+void register_render_functions(lua_State* L);         // dda.plot into the module table at the top
+void register_ground_motion_functions(lua_State* L);  // dda.ground_motion into the module table at the top
 // The frame sequence `dda run --frames N` asks for, on the new model at model_idx.
 void attach_session_frames(lua_State* L, int model_idx);
 void register_vtu(lua_State* L);  // m:vtu and dda.Vtu (wrap_vtu.cpp)

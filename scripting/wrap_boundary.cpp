@@ -1,9 +1,10 @@
 // Boundaries and prescribed displacements on edges and points (the paper's
 // VBC, SBC and DHI, as implemented by the engine):
-//   edges:viscous_boundary()                      → dda.Boundary
+//   edges:viscous_boundary{rock = r, vx = h, vy = h} → dda.Boundary
 //   edges:spring_boundary{p = ..., per_length = true} → dda.Boundary
-//   edges:target{displacement = h | velocity = h, direction = {dx, dy}} → dda.Target
-//   m:target{at = {x, y}, block = b, direction = {dx, dy}, displacement = h | velocity = h} → dda.Target
+//   edges:target{displacement = h | velocity = h | acceleration = h, direction = {dx, dy}} → dda.Target
+//   m:target{at = {x, y}, block = b, direction = {dx, dy}, displacement = h | velocity = h | acceleration = h} →
+//   dda.Target
 #include <map>
 
 #include "wrap.hpp"
@@ -27,10 +28,37 @@ EdgesSelf self_edges(lua_State* L, const char* call) {
   return s;
 }
 
-// edges:viscous_boundary() → Boundary
+// A history the engine evaluates itself (a number or a table, not a function).
+History engine_history(const Options& o, const char* key) {
+  lua_State* L = o.state();
+  o.push(key);
+  if (lua_type(L, -1) == LUA_TFUNCTION)
+    fail(o.call(), ": option '", key,
+         "' must be a number or a table of {t, v} pairs (the engine evaluates it "
+         "at each step's end), not a function");
+  const TimeInput input = TimeInput::parse(L, -1, o.call(), msg("option '", key, "'"));
+  lua_pop(L, 1);
+  return input.engine_history();
+}
+
+// edges:viscous_boundary{rock = r, vx = h, vy = h} → Boundary (all options optional)
 int es_viscous(lua_State* L) {
   EdgesSelf s = self_edges(L, "edges:viscous_boundary");
-  const int id = s.model->world().add_viscous_boundary(s.edges);
+  if (lua_isnoneornil(L, 2)) {  // edges:viscous_boundary(): no options
+    lua_settop(L, 1);
+    lua_newtable(L);
+  }
+  const Options o(L, 2, "edges:viscous_boundary", {"rock", "vx", "vy"});
+  int medium = -1;
+  if (o.has("rock")) {
+    o.push("rock");
+    medium = check_rock(L, -1, s.model, o.call(), "option 'rock'");
+    lua_pop(L, 1);
+  }
+  const int id = s.model->world().add_viscous_boundary(s.edges, medium);
+  if (o.has("vx") || o.has("vy"))
+    s.model->world().set_incident_velocity(id, o.has("vx") ? engine_history(o, "vx") : History(),
+                                           o.has("vy") ? engine_history(o, "vy") : History());
   push_model_of(L, 1);
   push_handle(L, -1, kBoundaryType, id);
   return 1;
@@ -51,19 +79,20 @@ int es_spring(lua_State* L) {
 
 // The input of a target: displacement = {ux, uy} (a fixed vector) or a
 // history (number, {{t, u}, ...}, function of t) along the direction; or
-// velocity = a history (number or table; the engine integrates it).
+// velocity = a history (number or table; the engine integrates it); or
+// acceleration = a history (integrated twice from rest: a shaken base).
 ScriptTarget read_target(const Options& o, bool directed) {
   lua_State* L = o.state();
   ScriptTarget t;
-  const int which = one_of(o, {"displacement", "velocity"});
-  if (which == 1) {
-    t.mode = ScriptTarget::Mode::Velocity;
-    o.push("velocity");
+  const int which = one_of(o, {"displacement", "velocity", "acceleration"});
+  if (which > 0) {
+    const char* key = which == 1 ? "velocity" : "acceleration";
+    t.mode = which == 1 ? ScriptTarget::Mode::Velocity : ScriptTarget::Mode::Acceleration;
+    o.push(key);
     if (lua_type(L, -1) == LUA_TFUNCTION)
-      fail(o.call(),
-           ": option 'velocity' must be a number or a table of {t, v} pairs (the engine integrates it); "
+      fail(o.call(), ": option '", key, "' must be a number or a table of {t, v} pairs (the engine integrates it); ",
            "give a function of t as displacement instead");
-    t.input = TimeInput::parse(L, -1, o.call(), "option 'velocity'");
+    t.input = TimeInput::parse(L, -1, o.call(), msg("option '", key, "'"));
     lua_pop(L, 1);
   } else {
     o.push("displacement");
@@ -88,13 +117,13 @@ ScriptTarget read_target(const Options& o, bool directed) {
   return t;
 }
 
-// edges:target{displacement = h | velocity = h, direction = {dx, dy}} → Target.
+// edges:target{displacement = h | velocity = h | acceleration = h, direction = {dx, dy}} → Target.
 // A target at each end point of each edge (once per block vertex); without a
 // direction each point moves along the edge normal into its block (the mean
 // of its edges' normals where two edges of the set meet).
 int es_target(lua_State* L) {
   EdgesSelf s = self_edges(L, "edges:target");
-  const Options o(L, 2, "edges:target", {"displacement", "velocity", "direction"});
+  const Options o(L, 2, "edges:target", {"displacement", "velocity", "acceleration", "direction"});
   std::optional<Vec2> direction;
   if (o.has("direction")) {
     direction = o.point("direction");
@@ -129,11 +158,11 @@ int es_target(lua_State* L) {
   return 1;
 }
 
-// m:target{at = {x, y}, block = b, direction = {dx, dy}, displacement = h | velocity = h} → Target
+// m:target{at = {x, y}, block = b, direction = {dx, dy}, displacement = h | velocity = h | acceleration = h} → Target
 int m_target(lua_State* L) {
   ScriptModel& m = check_model(L, 1, "m:target");
   check_not_busy(m, "m:target");
-  const Options o(L, 2, "m:target", {"at", "block", "direction", "displacement", "velocity"});
+  const Options o(L, 2, "m:target", {"at", "block", "direction", "displacement", "velocity", "acceleration"});
   const Vec2 at = o.point("at");
   BlockId b;
   if (o.has("block")) {
@@ -197,11 +226,11 @@ Handle* self_target(lua_State* L, const char* call) {
   return h;
 }
 
-// target:set{displacement = ... | velocity = ...}
+// target:set{displacement = ... | velocity = ... | acceleration = ...}
 int tg_set(lua_State* L) {
   Handle* h = self_target(L, "target:set");
   check_not_busy(*h->model, "target:set");
-  const Options o(L, 2, "target:set", {"displacement", "velocity"});
+  const Options o(L, 2, "target:set", {"displacement", "velocity", "acceleration"});
   ScriptTarget& old = h->model->target(h->id);
   ScriptTarget input = read_target(o, old.mode != ScriptTarget::Mode::Vector);
   if (old.mode == ScriptTarget::Mode::Vector && input.mode != ScriptTarget::Mode::Vector)
@@ -260,20 +289,26 @@ int tg_tostring(lua_State* L) {
 
 void register_boundaries(lua_State* L) {
   static const Method edge_methods[] = {
-      {"viscous_boundary", guarded<es_viscous>, "edges:viscous_boundary() → Boundary"},
+      {"viscous_boundary", guarded<es_viscous>,
+       "edges:viscous_boundary{rock = r, vx = h, vy = h} → Boundary. Dashpots ρC_P (normal) and ρC_S (along the "
+       "edge) that absorb waves leaving the model (Eqs. 6-12); ρ and the wave speeds are those of each edge's block, "
+       "or of rock material r (the half-space below a compliant base). With vx, vy (histories of the incident "
+       "wave's particle velocity, m/s, a number or {{t, v}, ...}) it is a compliant base: the wave comes in as the "
+       "traction 2ρC·v_in (vertically incident S: vx on a horizontal base; P: vy). See docs/seismic.md."},
       {"spring_boundary", guarded<es_spring>,
        "edges:spring_boundary{p = stiffness, per_length = true} → Boundary (per_length: Eq. 22, spring p·l at each "
        "end; false: Eq. 21, p alone)"},
       {"target", guarded<es_target>,
-       "edges:target{displacement = h | velocity = h, direction = {dx, dy}} → Target. A target at each end point of "
+       "edges:target{displacement = h | velocity = h | acceleration = h, direction = {dx, dy}} → Target. A target at "
+       "each end point of "
        "each edge (once per block vertex); without a direction each point moves along the edge normal into its block "
        "(the mean of its edges' normals where two edges of the set meet)."},
       {}};
   add_methods(L, kEdgeSetType, edge_methods);
-  static const Method model_methods[] = {
-      {"target", guarded<m_target>,
-       "m:target{at = {x, y}, block = b, direction = {dx, dy}, displacement = h | velocity = h} → Target"},
-      {}};
+  static const Method model_methods[] = {{"target", guarded<m_target>,
+                                          "m:target{at = {x, y}, block = b, direction = {dx, dy}, displacement = h | "
+                                          "velocity = h | acceleration = h} → Target"},
+                                         {}};
   add_model_methods(L, model_methods);
   static const Method bd_methods[] = {
       {"force", guarded<bd_force>,
@@ -284,7 +319,7 @@ void register_boundaries(lua_State* L) {
   static const luaL_Reg bd_meta[] = {{"__tostring", bd_tostring}, {nullptr, nullptr}};
   define_type(L, kBoundaryType, bd_methods, bd_meta);
   static const Method tg_methods[] = {
-      {"set", guarded<tg_set>, "target:set{displacement = ... | velocity = ...}"},
+      {"set", guarded<tg_set>, "target:set{displacement = ... | velocity = ... | acceleration = ...}"},
       {"displacement", guarded<tg_displacement>,
        "target:displacement([i]) → ux, uy of point i (default: the mean over its points)"},
       {"value", guarded<tg_value>,

@@ -27,6 +27,10 @@ endfunction()
 dda_run_test(script.free_fall scripts 600 free_fall.lua --set t_end=0.2)
 dda_run_test(script.incline scripts 600 incline.lua --set t_end=0.3)
 dda_run_test(script.rock_bar scripts 600 rock_bar.lua --set t_end=2e-5)
+foreach(base rigid compliant)
+  dda_run_test(script.earthquake_slope_${base} scripts 600 earthquake_slope.lua --set base=${base} --set settle=0.1
+               --set t_end=0.1 --set frames=0.05)
+endforeach()
 dda_run_test(script.paper_geometry scripts 600 paper/geometry_models.lua)
 dda_run_test(script.blast_geometry scripts 600 paper/blast_geometry.lua)
 

@@ -68,11 +68,18 @@ void Boundaries::set_target_velocity_history(int id, History velocity) {
   t.mode = DisplacementTarget::Velocity;
 }
 
+void Boundaries::set_target_acceleration_history(int id, History acceleration) {
+  DisplacementTarget& t = target(id);
+  if (t.direction.norm() == 0) throw Error(msg("displacement target ", id, ": a history needs a direction"));
+  t.history = std::move(acceleration);
+  t.mode = DisplacementTarget::Acceleration;
+}
+
 Vec2 Boundaries::target_point_displacement(int id) const { return target(id).point - target(id).origin; }
 Vec2 Boundaries::target_value(int id) const { return target(id).target; }
 
 int Boundaries::add_viscous_boundary(const Blocks& blocks, const std::vector<RockMaterial>& rocks,
-                                     const std::vector<EdgeRef>& edges) {
+                                     const std::vector<EdgeRef>& edges, const RockMaterial* medium) {
   const int id = static_cast<int>(boundaries_.size());
   check_edges(blocks, edges, msg("viscous boundary ", id));
   const int first = static_cast<int>(boundary_points_.size());
@@ -81,7 +88,7 @@ int Boundaries::add_viscous_boundary(const Blocks& blocks, const std::vector<Roc
     const Vec2 a = v[e.edge], b = v[(e.edge + 1) % v.size()];
     const double l = (b - a).norm();
     const Vec2 t = (b - a) / l, n(t.y(), -t.x());  // outward normal of a counter-clockwise outline
-    const RockMaterial& rock = rocks[blocks.material[e.block]];
+    const RockMaterial& rock = medium ? *medium : rocks[blocks.material[e.block]];
     // Eq. 6: C_P from the bulk and shear moduli.
     const double g = rock.youngs / (2 * (1 + rock.poisson)), k = rock.youngs / (3 * (1 - 2 * rock.poisson));
     const double cp = std::sqrt((k + 4 * g / 3) / rock.density), cs = std::sqrt(g / rock.density);
@@ -89,7 +96,7 @@ int Boundaries::add_viscous_boundary(const Blocks& blocks, const std::vector<Roc
     const Eigen::Matrix2d c = 0.5 * l * rock.density * (cp * n * n.transpose() + cs * t * t.transpose());
     for (const Vec2& p : {a, b}) boundary_points_.push_back({id, e.block, p, p, c, 0.0, Vec2::Zero()});
   }
-  boundaries_.push_back({BoundaryKind::Viscous, first, static_cast<int>(boundary_points_.size()) - first});
+  add_boundary(BoundaryKind::Viscous, first);
   return id;
 }
 
@@ -106,8 +113,26 @@ int Boundaries::add_spring_boundary(const Blocks& blocks, const std::vector<Edge
     for (const Vec2& pt : {a, b})
       boundary_points_.push_back({id, e.block, pt, pt, Eigen::Matrix2d::Zero(), k, Vec2::Zero()});
   }
-  boundaries_.push_back({BoundaryKind::Spring, first, static_cast<int>(boundary_points_.size()) - first});
+  add_boundary(BoundaryKind::Spring, first);
   return id;
+}
+
+void Boundaries::set_incident_velocity(int id, History vx, History vy) {
+  if (id < 0 || id >= static_cast<int>(boundaries_.size())) throw Error(msg("no boundary ", id));
+  Boundary& b = boundaries_[id];
+  if (b.kind != BoundaryKind::Viscous)
+    throw Error(msg("boundary ", id, ": an incident wave needs a viscous boundary (this one is a spring boundary)"));
+  b.incident = true;
+  b.incident_vx = std::move(vx);
+  b.incident_vy = std::move(vy);
+}
+
+void Boundaries::add_boundary(BoundaryKind kind, int first) {
+  Boundary b;
+  b.kind = kind;
+  b.first = first;
+  b.count = static_cast<int>(boundary_points_.size()) - first;
+  boundaries_.push_back(std::move(b));
 }
 
 std::vector<Vec2> Boundaries::boundary_point_forces(int id) const {
@@ -136,6 +161,7 @@ void Boundaries::add_terms(double t_end, double stiff_spring, const Blocks& bloc
   for (DisplacementTarget& t : targets_) {
     if (t.mode == DisplacementTarget::Displacement) t.target = t.history.value(t_end) * t.direction;
     if (t.mode == DisplacementTarget::Velocity) t.target = t.history.integral(t_end) * t.direction;
+    if (t.mode == DisplacementTarget::Acceleration) t.target = t.history.double_integral(t_end) * t.direction;
     if (t.direction.norm() > 0) {
       // Only the component along the direction is driven: goal = point moved
       // along the direction by what is still missing.
@@ -148,12 +174,17 @@ void Boundaries::add_terms(double t_end, double stiff_spring, const Blocks& bloc
 
   // VBC dashpots and SBC springs. A dashpot's force at the end-of-step
   // velocity v1 = velocity_factor·T·D − T·carried_velocity is −c·v1: its
-  // derivative joins the matrix, the rest the right-hand side.
+  // derivative joins the matrix, the rest the right-hand side. An incident
+  // wave adds 2·c·v_in(t_end), a load.
+  for (Boundary& b : boundaries_)
+    if (b.incident) b.incident_velocity = Vec2(b.incident_vx.value(t_end), b.incident_vy.value(t_end));
   for (const BoundaryPoint& p : boundary_points_) {
     const Mat26 t = displacement_matrix(p.point, blocks.centroid[p.block]);
-    if (boundaries_[p.boundary].kind == BoundaryKind::Viscous) {
+    const Boundary& boundary = boundaries_[p.boundary];
+    if (boundary.kind == BoundaryKind::Viscous) {
       terms.k[p.block] = Symmetric6(terms.k[p.block].full() + scheme.velocity_factor() * t.transpose() * p.c * t);
       terms.f[p.block] += t.transpose() * (p.c * (t * scheme.carried_velocity(blocks.velocity[p.block])));
+      if (boundary.incident) terms.f[p.block] += t.transpose() * (2 * (p.c * boundary.incident_velocity));
     } else {
       // SBC: the fixed-point sub-matrix without the fixed point's residual
       // term (the paper's §3.3.1): the spring acts on this step's
@@ -173,7 +204,9 @@ void Boundaries::update(const Blocks& blocks, const VecX& d_all, const TimeSchem
     const Vec2 du = moved(p.block, p.point);
     if (boundaries_[p.boundary].kind == BoundaryKind::Viscous) {
       const Mat26 t = displacement_matrix(p.point, blocks.centroid[p.block]);
-      p.force = -p.c * (t * scheme.end_velocity(d_of(p.block), blocks.velocity[p.block]));
+      const Boundary& b = boundaries_[p.boundary];
+      p.force = p.c * ((b.incident ? Vec2(2 * b.incident_velocity) : Vec2(Vec2::Zero())) -
+                       t * scheme.end_velocity(d_of(p.block), blocks.velocity[p.block]));
     } else {
       p.force = -p.k * du;
     }

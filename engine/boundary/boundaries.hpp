@@ -28,15 +28,23 @@ class Boundaries {
   // DHI: a stiff spring pulls the material point to start + target; with a
   // direction (normalised) along it only, the target a magnitude along it.
   int add_displacement_target(const Blocks& blocks, BlockId b, const Vec2& point, const Vec2& direction);
-  void set_target_displacement(int id, const Vec2& target);    // along a direction: target.x() is the magnitude
-  void set_target_history(int id, History displacement);       // magnitude along the direction
-  void set_target_velocity_history(int id, History velocity);  // integrated to displacement
+  void set_target_displacement(int id, const Vec2& target);            // along a direction: target.x() is the magnitude
+  void set_target_history(int id, History displacement);               // magnitude along the direction
+  void set_target_velocity_history(int id, History velocity);          // integrated to displacement
+  void set_target_acceleration_history(int id, History acceleration);  // integrated twice, from rest
   Vec2 target_point_displacement(int id) const;
   Vec2 target_value(int id) const;
 
-  // VBC (Eqs. 6–12) and SBC (Eq. 22), on the edges' end points.
+  // VBC (Eqs. 6–12) and SBC (Eq. 22), on the edges' end points. A viscous
+  // boundary takes ρ, C_P and C_S from each edge's block, or from `medium`
+  // when given (the half-space below a compliant base).
   int add_viscous_boundary(const Blocks& blocks, const std::vector<RockMaterial>& rocks,
-                           const std::vector<EdgeRef>& edges);
+                           const std::vector<EdgeRef>& edges, const RockMaterial* medium = nullptr);
+  // A compliant (quiet) base: the viscous boundary also carries the stress of
+  // a wave arriving from outside, particle velocity v_in(t) = (vx, vy): each
+  // point's force becomes C·(2·v_in − v), i.e. traction 2ρC·v_in less the
+  // dashpot's (UDEC's input; what leaves through the boundary is absorbed).
+  void set_incident_velocity(int id, History vx, History vy);
   int add_spring_boundary(const Blocks& blocks, const std::vector<EdgeRef>& edges, double p, bool per_length);
   std::vector<Vec2> boundary_point_forces(int id) const;
 
@@ -58,7 +66,7 @@ class Boundaries {
     Vec2 direction;              // zero direction: both components
     Vec2 target = Vec2::Zero();  // current target (vector)
     History history;
-    enum { Fixed, Displacement, Velocity } mode = Fixed;
+    enum { Fixed, Displacement, Velocity, Acceleration } mode = Fixed;
   };
   // A VBC dashpot (matrix c, N·s/m) or an SBC spring (stiffness k, N/m) at a material point.
   struct BoundaryPoint {
@@ -73,7 +81,11 @@ class Boundaries {
   struct Boundary {
     BoundaryKind kind;
     int first, count;
+    bool incident = false;  // a viscous boundary with an incident wave
+    History incident_vx, incident_vy;
+    Vec2 incident_velocity = Vec2::Zero();  // at the end of the last step assembled
   };
+  void add_boundary(BoundaryKind kind, int first);  // of the points from `first` on
   const DisplacementTarget& target(int id) const;
   DisplacementTarget& target(int id) { return const_cast<DisplacementTarget&>(std::as_const(*this).target(id)); }
 

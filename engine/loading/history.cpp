@@ -22,6 +22,12 @@ History::History(std::vector<std::pair<double, double>> points, const std::strin
   area_.resize(t_.size());
   area_[0] = v_[0] * t_[0];  // constant first value from t = 0
   for (std::size_t i = 1; i < t_.size(); ++i) area_[i] = area_[i - 1] + 0.5 * (v_[i] + v_[i - 1]) * (t_[i] - t_[i - 1]);
+  area2_.resize(t_.size());
+  area2_[0] = 0.5 * v_[0] * t_[0] * t_[0];
+  for (std::size_t i = 1; i < t_.size(); ++i) {
+    const double h = t_[i] - t_[i - 1];
+    area2_[i] = area2_[i - 1] + area_[i - 1] * h + h * h * (v_[i - 1] / 3 + v_[i] / 6);
+  }
 }
 
 History History::constant(double value) { return History({{0.0, value}}, "constant history"); }
@@ -33,6 +39,18 @@ double History::value(double t) const {
   const std::size_t i = std::upper_bound(t_.begin(), t_.end(), t) - t_.begin();  // t_[i-1] < t ≤ t_[i]
   const double s = (t - t_[i - 1]) / (t_[i] - t_[i - 1]);
   return v_[i - 1] + s * (v_[i] - v_[i - 1]);
+}
+
+double History::double_integral(double t) const {
+  if (t_.empty()) return 0;
+  if (t <= t_.front()) return 0.5 * v_.front() * t * t;
+  if (t >= t_.back()) {
+    const double s = t - t_.back();
+    return area2_.back() + area_.back() * s + 0.5 * v_.back() * s * s;
+  }
+  const std::size_t i = std::upper_bound(t_.begin(), t_.end(), t) - t_.begin();
+  const double s = t - t_[i - 1], slope = (v_[i] - v_[i - 1]) / (t_[i] - t_[i - 1]);
+  return area2_[i - 1] + area_[i - 1] * s + v_[i - 1] * s * s / 2 + slope * s * s * s / 6;
 }
 
 double History::integral(double t) const {

@@ -20,10 +20,14 @@ class History {
   double value(double t) const;
   // ∫₀ᵗ value dt (value before the first point is the first value).
   double integral(double t) const;
+  // ∫₀ᵗ∫₀ˢ value dτ ds, exact for the piecewise-linear value (a ground
+  // acceleration to its displacement, from rest at t = 0).
+  double double_integral(double t) const;
   bool empty() const { return t_.empty(); }
 
  private:
   std::vector<double> t_, v_, area_;  // area_[i] = ∫₀^{t_i}
+  std::vector<double> area2_;         // area2_[i] = ∫₀^{t_i} ∫₀ˢ
 };
 
 }  // namespace dda

@@ -159,13 +159,24 @@ void World::set_target_history(int id, History displacement) {
 void World::set_target_velocity_history(int id, History velocity) {
   s_.boundaries.set_target_velocity_history(id, std::move(velocity));
 }
+
+void World::set_target_acceleration_history(int id, History acceleration) {
+  s_.boundaries.set_target_acceleration_history(id, std::move(acceleration));
+}
 Vec2 World::target_point_displacement(int id) const { return s_.boundaries.target_point_displacement(id); }
 Vec2 World::target_value(int id) const { return s_.boundaries.target_value(id); }
 
 void World::fix_edges(const std::vector<EdgeRef>& edges) { s_.boundaries.fix_edges(s_.blocks, edges); }
-int World::add_viscous_boundary(const std::vector<EdgeRef>& edges) {
-  return s_.boundaries.add_viscous_boundary(s_.blocks, s_.rocks, edges);
+int World::add_viscous_boundary(const std::vector<EdgeRef>& edges, int medium) {
+  if (medium >= static_cast<int>(s_.rocks.size()))
+    throw Error(msg("viscous boundary: no rock material ", medium, " (there are ", s_.rocks.size(), ")"));
+  return s_.boundaries.add_viscous_boundary(s_.blocks, s_.rocks, edges, medium >= 0 ? &s_.rocks[medium] : nullptr);
 }
+
+void World::set_incident_velocity(int boundary, History vx, History vy) {
+  s_.boundaries.set_incident_velocity(boundary, std::move(vx), std::move(vy));
+}
+
 int World::add_spring_boundary(const std::vector<EdgeRef>& edges, double p, bool per_length) {
   return s_.boundaries.add_spring_boundary(s_.blocks, edges, p, per_length);
 }

@@ -77,15 +77,25 @@ class World {
   void set_target_displacement(int id, const Vec2& target);    // along a direction: target.x() is the magnitude
   void set_target_history(int id, History displacement);       // magnitude along the direction
   void set_target_velocity_history(int id, History velocity);  // integrated to displacement
-  Vec2 target_point_displacement(int id) const;                // the material point's displacement so far
-  Vec2 target_value(int id) const;                             // the last target applied (vector)
+  // Integrated twice from rest (a rigid shaken base driven by a ground
+  // acceleration; exact for the piecewise-linear history).
+  void set_target_acceleration_history(int id, History acceleration);
+  Vec2 target_point_displacement(int id) const;  // the material point's displacement so far
+  Vec2 target_value(int id) const;               // the last target applied (vector)
 
   // Fixed boundary: fixed points at both ends of each edge.
   void fix_edges(const std::vector<EdgeRef>& edges);
   // VBC (Eqs. 6–12): at each end of each edge, a dashpot pair over half the
   // edge length: traction −ρ(C_P v_n n + C_S v_s s), n the outward normal,
   // with ρ, C_P = sqrt((K + 4G/3)/ρ), C_S = sqrt(G/ρ) of the edge's block.
-  int add_viscous_boundary(const std::vector<EdgeRef>& edges);
+  // With a rock material `medium` (≥ 0) ρ, C_P, C_S are that material's: the
+  // half-space beyond a compliant base.
+  int add_viscous_boundary(const std::vector<EdgeRef>& edges, int medium = -1);
+  // A compliant (quiet) base: the viscous boundary also brings in a wave of
+  // particle velocity (vx(t), vy(t)) from outside, traction 2ρC·v_in
+  // (vertically incident S: vx on a horizontal base; P: vy). See
+  // docs/seismic.md.
+  void set_incident_velocity(int boundary, History vx, History vy);
   // SBC (Eq. 22): at each end of each edge a spring p·l·TᵀT (Eq. 21's p
   // without the edge length when per_length is false). As the paper says, it
   // is the fixed-point sub-matrix without the fixed point's residual term: it
