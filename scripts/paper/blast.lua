@@ -61,6 +61,7 @@
 --          with figure=...: fig<id>_*.png comparison plots.
 
 local dda = require "dda"
+local docs_output = require "docs_output"
 local blast_model = require "blast_model"
 
 local Q = blast_model.charge_kg                 -- kg TNT
@@ -181,7 +182,8 @@ local function run_case(cfg)
 
   -- line monitors: history and PPV table
   local lt = line[1] and line[1].mon:times() or {}
-  local f = assert(io.open(dda.output("blast_" .. tag .. "_line.csv"), "w"))
+  local line_csv = dda.output("blast_" .. tag .. "_line.csv")
+  local f = assert(io.open(line_csv, "w"))
   local hdr = { "time" }
   local series = {}
   for i, l in ipairs(line) do hdr[#hdr + 1] = string.format("vy_y%g", l.y); series[i] = l.mon:series("vy") end
@@ -191,8 +193,9 @@ local function run_case(cfg)
     for i = 1, #line do row[#row + 1] = string.format("%.6g", series[i][r]) end
     f:write(table.concat(row, ","), "\n")
   end
-  f:close()
-  f = assert(io.open(dda.output("blast_" .. tag .. "_ppv.csv"), "w"))
+  docs_output.close(f, line_csv)
+  local ppv_csv = dda.output("blast_" .. tag .. "_ppv.csv")
+  f = assert(io.open(ppv_csv, "w"))
   f:write("R_m,scaled_distance,ppv_m_s,t_peak_s,eq23_m_s,ratio\n")
   res.ppv_line = {}
   for _, l in ipairs(line) do
@@ -201,7 +204,7 @@ local function run_case(cfg)
     res.ppv_line[#res.ppv_line + 1] = { R = l.y, sd = sd, ppv = v, eq23 = eq23(sd) }
     f:write(string.format("%g,%.6g,%.6g,%.6g,%.6g,%.4g\n", l.y, sd, v, t, eq23(sd), v / eq23(sd)))
   end
-  f:close()
+  docs_output.close(f, ppv_csv)
 
   if dda.has_render then
     dda.plot{ file = "blast_" .. tag .. "_vy_MP1.png", title = "y-velocity at MP1 (" .. tag .. ")",
@@ -222,7 +225,7 @@ local function run_case(cfg)
                         cfg.boundary, cfg.t_end, #M.blocks, tot.steps, tot.wall_seconds,
                         1e3 * tot.wall_seconds / tot.steps, tot.step_cuts, tot.open_close_iterations, res.MP1,
                         res.t_peak_MP1, res.MP2, res.MP3, res.uy_MP3[#res.uy_MP3]))
-  f:close()
+  docs_output.close(f, path)
 
   if cfg.check then
     -- (a) first arrival at MP1: |vy| first above 1 % of its peak over the run,

@@ -13,6 +13,7 @@
 --          chamber_wall_length, boundary_edges, and the monitor points' blocks.
 
 local dda = require "dda"
+local docs_output = require "docs_output"
 
 local size = dda.param("size", 100)         -- m, side of the square model
 local spacing = dda.param("spacing", 2)     -- m
@@ -50,5 +51,5 @@ local out = assert(io.open(dda.output("blast_geometry.csv"), "w"))
 out:write("size,blocks,area,chamber_edges,chamber_wall_length,boundary_edges,mp1_block,mp2_block,mp3_block\n")
 out:write(string.format("%g,%d,%.9g,%d,%.9g,%d,%d,%d,%d\n", size, #blocks, blocks:area(), #wall, wall:length(),
                         #outer, ids.MP1, ids.MP2, ids.MP3))
-out:close()
+docs_output.close(out, dda.output("blast_geometry.csv"))
 print("written to " .. dda.output("blast_geometry.csv"))

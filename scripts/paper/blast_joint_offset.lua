@@ -20,6 +20,7 @@
 --          mean, smallest and largest PPV against the field's 0.95 m/s.
 
 local dda = require "dda"
+local docs_output = require "docs_output"
 package.path = package.path .. ";" .. (debug.getinfo(1, "S").source:match("@?(.*/)") or "./") .. "?.lua"
 local blast_model = require "blast_model"
 
@@ -53,12 +54,13 @@ for k = 0, n - 1 do
   print(string.format("  %6.3f  %6d  %9.4f  %9.4f", d, blocks, dhi, shi))
 end
 
-local f = assert(io.open(dda.output("blast_joint_offset.csv"), "w"))
+local offset_csv = dda.output("blast_joint_offset.csv")
+local f = assert(io.open(offset_csv, "w"))
 f:write("offset_m,blocks,ppv_dhi_m_s,t_peak_dhi_s,ppv_shi_m_s,t_peak_shi_s\n")
 for _, r in ipairs(rows) do
   f:write(string.format("%.6g,%d,%.6g,%.6g,%.6g,%.6g\n", r.d, r.blocks, r.dhi, r.t_dhi, r.shi, r.t_shi))
 end
-f:close()
+docs_output.close(f, offset_csv)
 
 local function stats(key)
   local sum, lo, hi = 0, math.huge, -math.huge

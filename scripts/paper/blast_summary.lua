@@ -91,7 +91,7 @@ local function copy(src, dst)
   local i = io.open(src, "rb")
   if not i then return false end
   local data = i:read("a"); i:close()
-  local o = assert(io.open(dst, "wb")); o:write(data); o:close()
+  local o = assert(io.open(dst, "wb")); o:write(data); docs_output.close(o, dst)
   return true
 end
 

@@ -27,6 +27,14 @@ function M.write(path, text)
   end
 end
 
+-- Closes a file written with io.open and f:write, raising naming the file if
+-- any of its writes failed (a full disk shows at the latest when the buffer
+-- is flushed on close).
+function M.close(f, path)
+  local ok, err = f:close()
+  if not ok then error("cannot write " .. path .. ": " .. tostring(err), 2) end
+end
+
 function M.read(path)
   local f = io.open(path, "rb")
   if not f then return nil end

@@ -216,7 +216,8 @@ function wave.write_rows(path, rows)
   local f = assert(io.open(path, "w"))
   f:write("figure,quantity,paper,ours,unit\n")
   for _, r in ipairs(rows) do f:write(wave.csv_row(r), "\n") end
-  f:close()
+  local ok, err = f:close()
+  if not ok then error("cannot write " .. path .. ": " .. tostring(err), 2) end
 end
 
 -- Writes <out>/<name>_numbers.csv; raises when check=true and a target failed.

@@ -14,7 +14,7 @@ import resource
 import signal
 import subprocess
 
-from common import DDA, check, finish, read, run, scratch, write
+from common import DDA, SOURCE, check, finish, read, run, scratch, write
 
 MODEL = """
 local m = dda.model{ plane = 'stress', g1 = 1e-4, gravity = {0, -9.81} }
@@ -127,6 +127,15 @@ os.symlink("/dev/full", os.path.join(d, "swo", "summary.csv.part"))
 r = run(["sweep", "sw.lua", "--grid", "a=1,2", "--out", "swo"], d)
 check(r.returncode == 1 and "cannot write 'swo/summary.csv': No space left on device" in r.stderr,
       "a sweep table on a full disk: exit 1, the file named", (r.returncode, r.stderr))
+
+# ---- a paper script's own CSV (io.open) on a full disk ---------------------------------------
+os.makedirs(os.path.join(d, "bg"))
+os.symlink("/dev/full", os.path.join(d, "bg", "blast_geometry.csv"))
+r = run(["run", os.path.join(SOURCE, "scripts", "paper", "blast_geometry.lua"), "--out", "bg", "--quiet", "--set",
+         "check_step=false"], d)
+check(r.returncode == 1 and "blast_geometry.lua:" in r.stderr and
+      "cannot write bg/blast_geometry.csv: No space left on device" in r.stderr,
+      "blast_geometry.lua's CSV on a full disk: exit 1 naming the file (was: 0)", (r.returncode, r.stderr))
 
 # ---- killed in the middle: every row complete ---------------------------------------------
 import time
