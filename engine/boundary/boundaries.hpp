@@ -49,6 +49,12 @@ class Boundaries {
   // force they exerted.
   void update(const Blocks& blocks, const VecX& d, const TimeScheme& scheme);
 
+  // What a checkpoint holds (core/archive.hpp): every point with its state.
+  template <class Archive>
+  void fields(Archive& ar) {
+    ar(fixed_points_, targets_, boundary_points_, boundaries_);
+  }
+
  private:
   using FixedPoint = MaterialPoint;
   struct DisplacementTarget {
@@ -59,6 +65,10 @@ class Boundaries {
     Vec2 target = Vec2::Zero();  // current target (vector)
     History history;
     enum { Fixed, Displacement, Velocity } mode = Fixed;
+    template <class Archive>
+    void fields(Archive& ar) {
+      ar(block, point, origin, direction, target, history, mode);
+    }
   };
   // A VBC dashpot (matrix c, N·s/m) or an SBC spring (stiffness k, N/m) at a material point.
   struct BoundaryPoint {
@@ -69,10 +79,18 @@ class Boundaries {
     Eigen::Matrix2d c;
     double k;
     Vec2 force;
+    template <class Archive>
+    void fields(Archive& ar) {
+      ar(boundary, block, point, origin, c, k, force);
+    }
   };
   struct Boundary {
     BoundaryKind kind;
     int first, count;
+    template <class Archive>
+    void fields(Archive& ar) {
+      ar(kind, first, count);
+    }
   };
   const DisplacementTarget& target(int id) const;
   DisplacementTarget& target(int id) { return const_cast<DisplacementTarget&>(std::as_const(*this).target(id)); }

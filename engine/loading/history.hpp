@@ -21,6 +21,10 @@ class History {
   // ∫₀ᵗ value dt (value before the first point is the first value).
   double integral(double t) const;
   bool empty() const { return t_.empty(); }
+  template <class Archive>
+  void fields(Archive& ar) {
+    ar(t_, v_, area_);
+  }
 
  private:
   std::vector<double> t_, v_, area_;  // area_[i] = ∫₀^{t_i}
