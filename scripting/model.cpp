@@ -3,11 +3,15 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdlib>
 #include <limits>
 
+#include "core/archive.hpp"
 #include "core/error.hpp"
 #include "geometry/polygon.hpp"
+#include "output_file.hpp"
 #include "session.hpp"
+#include "world/checkpoint.hpp"
 
 namespace dda::script {
 
@@ -51,6 +55,7 @@ void Monitor::close() {
 // ---- model -------------------------------------------------------------------------------
 
 ScriptModel::ScriptModel(const Controls& controls) : world_(std::make_unique<World>(controls)) {}
+ScriptModel::ScriptModel(World world) : world_(std::make_unique<World>(std::move(world))) {}
 ScriptModel::~ScriptModel() = default;
 
 void ScriptModel::close() {
@@ -345,6 +350,117 @@ StepStats ScriptModel::step(lua_State* L) {
     if (n % m->every == 0) record(*m);
   for (auto& h : hooks_) h->after_step(*world_);
   return st;
+}
+
+// ---- checkpoints -----------------------------------------------------------------------------
+
+template <class Archive>
+void ScriptModel::script_fields(Archive& ar, std::vector<std::string>& monitor_names) {
+  ar.section("script model");
+  ar(number, loads_, pressures_, targets_, fixed_points_, has_domain_, generated_, monitor_names);
+}
+
+void ScriptModel::save(const std::filesystem::path& path) const {
+  std::vector<std::string> names;
+  for (const auto& m : monitors_) names.push_back(m->name);
+  ArchiveWriter ar;
+  const_cast<ScriptModel*>(this)->script_fields(ar, names);  // writing only reads
+  save_checkpoint(*world_, path, ar.bytes());
+}
+
+std::unique_ptr<ScriptModel> ScriptModel::load(const std::filesystem::path& path, std::vector<std::string>& warnings) {
+  Checkpoint c = load_checkpoint(path);
+  auto m = std::make_unique<ScriptModel>(std::move(c.world));
+  ArchiveReader ar(c.extra, msg("checkpoint '", path.string(), "'"));
+  m->script_fields(ar, m->saved_monitors_);
+  // Lua functions do not travel: each such input keeps the value it gave last.
+  auto lost = [&](const char* what, std::size_t i, const std::string& where, const std::string& value) {
+    warnings.push_back(msg(what, " ", i + 1, " was driven by a Lua function (", where,
+                           "), which a checkpoint cannot hold: it keeps its last value, ", value));
+  };
+  for (std::size_t i = 0; i < m->loads_.size(); ++i) {
+    ScriptPointLoad& l = m->loads_[i];
+    if (!l.force.is_lost_function()) continue;
+    lost("point load", i, l.force.along ? l.force.magnitude.where() : l.force.xy.where(),
+         msg("(", l.current.x(), ", ", l.current.y(), ") N"));
+    ForceInput frozen;
+    frozen.xy = VecTimeInput::constant(l.current);
+    l.force = std::move(frozen);
+  }
+  for (std::size_t i = 0; i < m->pressures_.size(); ++i) {
+    ScriptPressure& p = m->pressures_[i];
+    if (!p.pressure.is_lost_function()) continue;
+    lost("pressure", i, p.pressure.where(), msg(p.current, " Pa"));
+    p.pressure = TimeInput(p.current);
+  }
+  for (std::size_t i = 0; i < m->targets_.size(); ++i) {
+    ScriptTarget& t = m->targets_[i];
+    if (!t.input.is_lost_function()) continue;
+    lost("displacement target", i, t.input.where(), msg(t.current, " m"));
+    t.input = TimeInput(t.current);
+  }
+  return m;
+}
+
+namespace {
+// The step of a monitor CSV row ("step,time,..."), or -1.
+long row_step(const std::string& line) {
+  char* end = nullptr;
+  const long step = std::strtol(line.c_str(), &end, 10);
+  return end != line.c_str() && *end == ',' ? step : -1;
+}
+}  // namespace
+
+void ScriptModel::restore(ScriptModel& saved, const std::string& what) {
+  const World& here = *world_;
+  const World& there = *saved.world_;
+  auto same = [&](const char* things, std::size_t n_here, std::size_t n_there) {
+    if (n_here != n_there)
+      throw Error(msg(what, " holds a model with ", n_there, " ", things, "; the script built model ", number, " with ",
+                      n_here, ": restart with the script (and --set values) that wrote the checkpoint"));
+  };
+  same("blocks", here.block_count(), there.block_count());
+  for (BlockId b = 0; b < static_cast<BlockId>(here.block_count()); ++b) {
+    const auto a = here.block_initial_vertices(b), c = there.block_initial_vertices(b);
+    if (!std::equal(a.begin(), a.end(), c.begin(), c.end()))
+      throw Error(msg(what, " holds a model whose block ", b + 1, " started elsewhere than the script's block ", b + 1,
+                      ": restart with the script (and --set values) that wrote the checkpoint"));
+  }
+  same("rock materials", here.rock_material_count(), there.rock_material_count());
+  same("joint materials", here.joint_material_count(), there.joint_material_count());
+  same("point loads", loads_.size(), saved.loads_.size());
+  same("pressures", pressures_.size(), saved.pressures_.size());
+  same("displacement targets", targets_.size(), saved.targets_.size());
+  same("fixed points", fixed_points_, saved.fixed_points_);
+  same("monitors", monitors_.size(), saved.saved_monitors_.size());
+
+  const int threads = world_->controls().threads;  // of this run, not of the state
+  *world_ = std::move(*saved.world_);
+  saved.world_.reset();
+  world_->controls().threads = threads;
+  for (std::size_t i = 0; i < loads_.size(); ++i) loads_[i].current = saved.loads_[i].current;
+  for (std::size_t i = 0; i < pressures_.size(); ++i) pressures_[i].current = saved.pressures_[i].current;
+  for (std::size_t i = 0; i < targets_.size(); ++i) targets_[i].current = saved.targets_[i].current;
+
+  // Each monitor's file and memory: the straight run's rows up to the
+  // checkpoint, then this run's.
+  const long step = world_->step_count();
+  for (auto& m : monitors_) {
+    m->started = step > 0 || m->started;
+    for (std::size_t k = 1; k < m->previous_lines.size(); ++k) {
+      const std::string& line = m->previous_lines[k];
+      const long s = row_step(line);
+      if (s < 0 || s > step) continue;
+      const std::vector<std::string> cells = csv_split(line);
+      if (cells.size() != 2 + m->fields.size()) continue;
+      m->steps.push_back(s);
+      m->times.push_back(std::atof(cells[1].c_str()));
+      for (std::size_t f = 0; f < m->fields.size(); ++f) m->values[f].push_back(std::atof(cells[2 + f].c_str()));
+      if (m->file) std::fprintf(m->file, "%s\n", line.c_str());
+    }
+    if (m->file) std::fflush(m->file);
+    m->previous_lines.clear();
+  }
 }
 
 }  // namespace dda::script

@@ -41,6 +41,9 @@ struct Monitor {
   std::vector<double> times;
   std::vector<std::vector<double>> values;  // values[field][row]
   std::FILE* file = nullptr;
+  // dda run --restart: the rows the CSV file held before this run (header
+  // first), put back up to the checkpoint's step when the model restarts.
+  std::vector<std::string> previous_lines;
 
   Monitor() = default;
   Monitor(const Monitor&) = delete;
@@ -62,6 +65,11 @@ struct ForceInput {
   bool engine_driven() const { return along && !magnitude.is_function(); }
   bool constant() const { return along ? magnitude.is_constant() : xy.is_constant(); }
   Vec2 at(lua_State* L, double t) const { return along ? Vec2(direction * magnitude.at(L, t)) : xy.at(L, t); }
+  bool is_lost_function() const { return along ? magnitude.is_lost_function() : xy.is_lost_function(); }
+  template <class Archive>
+  void fields(Archive& ar) {
+    ar(xy, along, direction, magnitude);
+  }
 };
 
 struct ScriptPointLoad {
@@ -71,6 +79,10 @@ struct ScriptPointLoad {
   ForceInput force;
   bool engine_history = false;  // the World holds a history for it (all later values go through one)
   Vec2 current = Vec2::Zero();  // last value set from here
+  template <class Archive>
+  void fields(Archive& ar) {
+    ar(world_id, block, point, force, engine_history, current);
+  }
 };
 
 // Prescribed displacements (the paper's DHI): engine targets at material
@@ -82,6 +94,10 @@ struct ScriptTarget {
   Vec2 vector = Vec2::Zero();  // Mode::Vector
   TimeInput input;             // magnitude along each point's direction (a table, or a function for Displacement)
   double current = 0;          // last value of a function input
+  template <class Archive>
+  void fields(Archive& ar) {
+    ar(world_ids, mode, vector, input, current);
+  }
 };
 
 // A pressure on a set of edges (the engine's SHI load: normal to each edge,
@@ -93,6 +109,10 @@ struct ScriptPressure {
   int world_id = -1;
   TimeInput pressure;
   double current = 0;  // last value of a function input
+  template <class Archive>
+  void fields(Archive& ar) {
+    ar(edges, world_id, pressure, current);
+  }
 };
 
 // Something that follows the run step by step (the renderer's frame
@@ -116,6 +136,7 @@ struct Totals {
 class ScriptModel {
  public:
   explicit ScriptModel(const Controls& controls);
+  explicit ScriptModel(World world);
   ~ScriptModel();
 
   World& world() { return *world_; }
@@ -195,6 +216,28 @@ class ScriptModel {
 
   bool controls_logged = false;  // the run log has this model's controls
 
+  // ---- checkpoints (world/checkpoint.hpp) -------------------------------------
+  // Its number in the run: 1 for the first model made (dda.model or
+  // dda.load), 2 for the next...: the model a --restart continues.
+  int number = 0;
+  // m:save: the World, and beside it the loads' inputs (a Lua function as
+  // the last value it gave: a checkpoint cannot hold Lua code) and the names
+  // of the monitors.
+  void save(const std::filesystem::path& path) const;
+  // dda.load: the model of a checkpoint; an input that was a Lua function
+  // keeps its last value (one warning each in `warnings`).
+  static std::unique_ptr<ScriptModel> load(const std::filesystem::path& path, std::vector<std::string>& warnings);
+  // dda run --restart: this model, built again by the script, takes the
+  // state of `saved` (its loads keep the script's inputs; monitor files keep
+  // their rows up to the checkpoint). Throws dda::Error, naming `what`, when
+  // the script built another model.
+  void restore(ScriptModel& saved, const std::string& what);
+  // After a restore: the step count the straight run had where the script
+  // now stands (stepping calls that end before the checkpoint return at
+  // once); empty once caught up or unknown (wrap_model.cpp, run_loop).
+  std::optional<long> replay_mark;
+  double last_checkpoint_time = 0;  // --checkpoint-every T s: the time of the last one
+
  private:
   void apply_loads(lua_State* L, double t);
   void record(Monitor& m);
@@ -202,6 +245,8 @@ class ScriptModel {
   void hand_over(ScriptPointLoad& load, lua_State* L);
   void hand_over(ScriptTarget& t, lua_State* L);
   void push_force(ScriptPointLoad& load, const Vec2& f);
+  template <class Archive>
+  void script_fields(Archive& ar, std::vector<std::string>& monitor_names);
 
   std::unique_ptr<World> world_;
   geometry::CutInput cut_;
@@ -215,6 +260,7 @@ class ScriptModel {
   std::vector<std::unique_ptr<Monitor>> monitors_;
   std::vector<std::unique_ptr<StepHook>> hooks_;
   int fixed_points_ = 0;
+  std::vector<std::string> saved_monitors_;  // of a model read from a checkpoint
   Totals totals_;
   bool busy_ = false;
 };

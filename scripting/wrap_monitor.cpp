@@ -4,6 +4,7 @@
 #include <cerrno>
 #include <cmath>
 #include <cstring>
+#include <fstream>
 #include <system_error>
 
 #include "session.hpp"
@@ -78,12 +79,20 @@ int m_monitor(lua_State* L) {
     if (session_.files.count(key))
       fail("m:monitor: another monitor already writes ", mon->path.string(),
            " in this run; give this one another name");
+    std::string header = "step,time";
+    for (Field f : mon->fields) header += msg(",", field_name(f));
+    // dda run --restart: the rows of the run being continued, put back up to
+    // the checkpoint's step when this model restarts (ScriptModel::restore).
+    if (session_.restart && session_.restart->number == m.number) {
+      std::ifstream old(mon->path);
+      std::string line;
+      while (std::getline(old, line)) mon->previous_lines.push_back(line);
+      if (mon->previous_lines.empty() || mon->previous_lines[0] != header) mon->previous_lines.clear();
+    }
     mon->file = std::fopen(mon->path.c_str(), "w");
     if (!mon->file) fail("m:monitor: cannot write ", mon->path.string(), ": ", std::strerror(errno));
     session_.files.insert(key);
-    std::fputs("step,time", mon->file);
-    for (Field f : mon->fields) std::fprintf(mon->file, ",%s", field_name(f));
-    std::fputc('\n', mon->file);
+    std::fprintf(mon->file, "%s\n", header.c_str());
     std::fflush(mon->file);
   } else {
     session_.files.insert(msg("(memory) ", mon->name, " ", session_.files.size()));
