@@ -461,6 +461,7 @@ void ScriptModel::restore(ScriptModel& saved, const std::string& what) {
     if (m->file) std::fflush(m->file);
     m->previous_lines.clear();
   }
+  for (auto& h : hooks_) h->restarted(*world_);
 }
 
 }  // namespace dda::script

@@ -122,6 +122,8 @@ struct StepHook {
   virtual void before_step(const World&) {}
   virtual void after_step(const World&) {}  // after the monitors have recorded the step
   virtual void monitor_added(int /*tracked_point*/, const std::string& /*name*/) {}
+  // dda run --restart: the World now holds the checkpoint's state.
+  virtual void restarted(const World&) {}
 };
 
 struct Totals {

@@ -51,7 +51,7 @@ def dda(*args):
     return run(["run", "scene.lua", "--quiet", "--set", "source=" + SOURCE] + list(args), d)
 
 
-cases = [("bar", ["--set", "steps=90"], ["--set", "steps=50"], "--checkpoint-every", "20"),
+cases = [("bar", ["--set", "steps=90", "--vtu", "10"], ["--set", "steps=50", "--vtu", "10"], "--checkpoint-every", "20"),
          ("blast", ["--set", "steps=60"], ["--set", "steps=35"], "--checkpoint-every", "15"),
          ("slope", ["--set", "time=0.4"], ["--set", "time=0.25"], "--checkpoint-every", "0.1s")]
 for scene, full, part, every_opt, every in cases:
@@ -73,6 +73,11 @@ for scene, full, part, every_opt, every in cases:
               "%s\n%s against %s" % (r.stderr, hash_of(r), straight))
         check(read(os.path.join(d, o, "probe.csv")) == read(os.path.join(d, out, "probe.csv")),
               "%s: the monitor file continues: the straight run's rows, none twice" % scene)
+        if scene == "bar":
+            vtu, vtu0 = os.path.join(d, o, "vtu"), os.path.join(d, out, "vtu")
+            check(read(os.path.join(vtu, "blocks.pvd")) == read(os.path.join(vtu0, "blocks.pvd")) and
+                  read(os.path.join(vtu, "contacts_00009.vtu")) == read(os.path.join(vtu0, "contacts_00009.vtu")),
+                  "bar: the VTU series continues: the straight run's .pvd and files")
         log = read(os.path.join(d, o, "run.log")).split("==== dda run")[-1]
         check(re.search(r"restart: model 1 continues from \S+checkpoint.ckpt at step \d+", log) is not None,
               scene + ": the run log says where the restart continued", log)
