@@ -9,7 +9,6 @@
 #include "core/archive.hpp"
 #include "core/error.hpp"
 #include "geometry/polygon.hpp"
-#include "output_file.hpp"
 #include "session.hpp"
 #include "world/checkpoint.hpp"
 
@@ -355,16 +354,18 @@ StepStats ScriptModel::step(lua_State* L) {
 // ---- checkpoints -----------------------------------------------------------------------------
 
 template <class Archive>
-void ScriptModel::script_fields(Archive& ar, std::vector<std::string>& monitor_names) {
+void ScriptModel::script_fields(Archive& ar, std::vector<SavedMonitor>& monitors) {
   ar.section("script model");
-  ar(number, loads_, pressures_, targets_, fixed_points_, has_domain_, generated_, monitor_names);
+  ar(number, loads_, pressures_, targets_, fixed_points_, has_domain_, generated_, totals_);
+  ar.section("monitors");
+  ar(monitors);
 }
 
 void ScriptModel::save(const std::filesystem::path& path) const {
-  std::vector<std::string> names;
-  for (const auto& m : monitors_) names.push_back(m->name);
+  std::vector<SavedMonitor> monitors;
+  for (const auto& m : monitors_) monitors.push_back({m->name, m->steps, m->times, m->values});
   ArchiveWriter ar;
-  const_cast<ScriptModel*>(this)->script_fields(ar, names);  // writing only reads
+  const_cast<ScriptModel*>(this)->script_fields(ar, monitors);  // writing only reads
   save_checkpoint(*world_, path, ar.bytes());
 }
 
@@ -433,6 +434,13 @@ void ScriptModel::restore(ScriptModel& saved, const std::string& what) {
   same("displacement targets", targets_.size(), saved.targets_.size());
   same("fixed points", fixed_points_, saved.fixed_points_);
   same("monitors", monitors_.size(), saved.saved_monitors_.size());
+  for (std::size_t i = 0; i < monitors_.size(); ++i) {
+    const SavedMonitor& s = saved.saved_monitors_[i];
+    if (s.name != monitors_[i]->name || s.values.size() != monitors_[i]->fields.size())
+      throw Error(msg(what, " holds a model whose monitor ", i + 1, " is '", s.name, "' with ", s.values.size(),
+                      " fields; the script's is '", monitors_[i]->name, "' with ", monitors_[i]->fields.size(),
+                      ": restart with the script (and --set values) that wrote the checkpoint"));
+  }
 
   const int threads = world_->controls().threads;  // of this run, not of the state
   *world_ = std::move(*saved.world_);
@@ -441,22 +449,21 @@ void ScriptModel::restore(ScriptModel& saved, const std::string& what) {
   for (std::size_t i = 0; i < loads_.size(); ++i) loads_[i].current = saved.loads_[i].current;
   for (std::size_t i = 0; i < pressures_.size(); ++i) pressures_[i].current = saved.pressures_[i].current;
   for (std::size_t i = 0; i < targets_.size(); ++i) targets_[i].current = saved.targets_[i].current;
+  totals_ = saved.totals_;  // since the start of the run being continued
 
-  // Each monitor's file and memory: the straight run's rows up to the
-  // checkpoint, then this run's.
+  // Each monitor: the straight run's records up to the checkpoint, in
+  // memory and in its file, then this run's.
   const long step = world_->step_count();
-  for (auto& m : monitors_) {
-    m->started = step > 0 || m->started;
+  for (std::size_t i = 0; i < monitors_.size(); ++i) {
+    Monitor* m = monitors_[i].get();
+    SavedMonitor& s = saved.saved_monitors_[i];
+    m->steps = std::move(s.steps);
+    m->times = std::move(s.times);
+    m->values = std::move(s.values);
+    m->started = !m->steps.empty();
     for (std::size_t k = 1; k < m->previous_lines.size(); ++k) {
-      const std::string& line = m->previous_lines[k];
-      const long s = row_step(line);
-      if (s < 0 || s > step) continue;
-      const std::vector<std::string> cells = csv_split(line);
-      if (cells.size() != 2 + m->fields.size()) continue;
-      m->steps.push_back(s);
-      m->times.push_back(std::atof(cells[1].c_str()));
-      for (std::size_t f = 0; f < m->fields.size(); ++f) m->values[f].push_back(std::atof(cells[2 + f].c_str()));
-      if (m->file) std::fprintf(m->file, "%s\n", line.c_str());
+      const long row = row_step(m->previous_lines[k]);
+      if (row >= 0 && row <= step && m->file) std::fprintf(m->file, "%s\n", m->previous_lines[k].c_str());
     }
     if (m->file) std::fflush(m->file);
     m->previous_lines.clear();

@@ -52,6 +52,18 @@ struct Monitor {
   void close();
 };
 
+// A monitor's record in a checkpoint: what it recorded so far.
+struct SavedMonitor {
+  std::string name;
+  std::vector<long> steps;
+  std::vector<double> times;
+  std::vector<std::vector<double>> values;
+  template <class Archive>
+  void fields(Archive& ar) {
+    ar(name, steps, times, values);
+  }
+};
+
 // ---- Loads ----------------------------------------------------------------
 // The force of a point load: (fx, fy) histories or a function returning both,
 // evaluated here once per step before the step at its planned end time; or a
@@ -133,6 +145,10 @@ struct Totals {
   long cg_iterations = 0;
   long patch_iterations = 0;
   double wall_seconds = 0;
+  template <class Archive>
+  void fields(Archive& ar) {
+    ar(steps, step_cuts, open_close_iterations, cg_iterations, patch_iterations, wall_seconds);
+  }
 };
 
 class ScriptModel {
@@ -223,15 +239,16 @@ class ScriptModel {
   // dda.load), 2 for the next...: the model a --restart continues.
   int number = 0;
   // m:save: the World, and beside it the loads' inputs (a Lua function as
-  // the last value it gave: a checkpoint cannot hold Lua code) and the names
-  // of the monitors.
+  // the last value it gave: a checkpoint cannot hold Lua code) and what the
+  // monitors recorded.
   void save(const std::filesystem::path& path) const;
   // dda.load: the model of a checkpoint; an input that was a Lua function
   // keeps its last value (one warning each in `warnings`).
   static std::unique_ptr<ScriptModel> load(const std::filesystem::path& path, std::vector<std::string>& warnings);
   // dda run --restart: this model, built again by the script, takes the
-  // state of `saved` (its loads keep the script's inputs; monitor files keep
-  // their rows up to the checkpoint). Throws dda::Error, naming `what`, when
+  // state of `saved` (its loads keep the script's inputs; monitors take the
+  // saved records, their files keep their rows up to the checkpoint). Throws
+  // dda::Error, naming `what`, when
   // the script built another model.
   void restore(ScriptModel& saved, const std::string& what);
   // After a restore: the step count the straight run had where the script
@@ -248,7 +265,7 @@ class ScriptModel {
   void hand_over(ScriptTarget& t, lua_State* L);
   void push_force(ScriptPointLoad& load, const Vec2& f);
   template <class Archive>
-  void script_fields(Archive& ar, std::vector<std::string>& monitor_names);
+  void script_fields(Archive& ar, std::vector<SavedMonitor>& monitors);
 
   std::unique_ptr<World> world_;
   geometry::CutInput cut_;
@@ -262,7 +279,7 @@ class ScriptModel {
   std::vector<std::unique_ptr<Monitor>> monitors_;
   std::vector<std::unique_ptr<StepHook>> hooks_;
   int fixed_points_ = 0;
-  std::vector<std::string> saved_monitors_;  // of a model read from a checkpoint
+  std::vector<SavedMonitor> saved_monitors_;  // of a model read from a checkpoint
   Totals totals_;
   bool busy_ = false;
 };

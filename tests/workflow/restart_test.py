@@ -18,13 +18,14 @@ local dda = require "dda"
 package.path = package.path .. ";" .. dda.param("source", ".") .. "/scripts/bench/?.lua"
 local scenes = require "scenes"
 local name, threads = dda.param("scene", "bar"), dda.param("threads", 1)
-local m
+local m, probe
 if name == "bar" then
   m = scenes.bar(threads)
-  m:monitor{ at = {0.55, 0.05}, fields = {"sxx", "vx"}, name = "probe", every = 3 }
+  probe = m:monitor{ at = {0.55, 0.05}, fields = {"sxx", "vx"}, name = "probe", every = 3 }
+  m:monitor{ at = {0.35, 0.05}, fields = {"vx"}, csv = false }
 elseif name == "blast" then
   m = scenes.blast(4, threads)
-  m:monitor{ at = {0, -10}, fields = {"ux", "uy"}, name = "probe", every = 3 }
+  probe = m:monitor{ at = {0, -10}, fields = {"ux", "uy"}, name = "probe", every = 3 }
 else  -- a block sliding down a 30 degree incline, phi = 20 degrees
   local alpha = math.rad(30)
   m = dda.model{ gravity = {0, -9.81}, g1 = 1e-3, g2 = 0.01, threads = threads }
@@ -34,11 +35,14 @@ else  -- a block sliding down a 30 degree incline, phi = 20 degrees
   m:add_block{ {0, 0}, {0, -1}, {4 * s[1], -1}, {4 * s[1], 4 * s[2]}, rock = rock, joint = joint }:fix()
   local function at(d, h) return {d * s[1] + h * n[1], d * s[2] + h * n[2]} end
   m:add_block{ at(3, 1e-6), at(3.5, 1e-6), at(3.5, 0.500001), at(3, 0.500001), rock = rock, joint = joint }
-  m:monitor{ at = at(3.25, 0.25), fields = {"x", "vx"}, name = "probe", every = 3 }
+  probe = m:monitor{ at = at(3.25, 0.25), fields = {"x", "vx"}, name = "probe", every = 3 }
 end
 local t = dda.param("time", 0)
 if t > 0 then m:run{ time = t } else m:step(dda.param("steps", 60)) end
 print("hash " .. m:hash() .. " step " .. m:steps() .. " sliding " .. m:contact_summary().sliding)
+local sum, series = 0, probe:series(name == "blast" and "uy" or "vx")
+for _, v in ipairs(series) do sum = sum + v end
+print(string.format("monitor %d rows, sum %.17g", #series, sum))
 """)
 
 
@@ -57,7 +61,7 @@ cases = [("bar", ["--set", "steps=90", "--vtu", "10"], ["--set", "steps=50", "--
 for scene, full, part, every_opt, every in cases:
     out = "straight-" + scene
     r = dda("--set", "scene=" + scene, "--out", out, *full)
-    straight = hash_of(r)
+    straight, straight_out = hash_of(r), r.stdout
     check(r.returncode == 0 and straight[0], scene + ": the straight run", r.stderr)
     if scene == "slope":
         check(straight[2] > 0, "slope: the block slides (friction state is carried)", r.stdout)
@@ -71,6 +75,9 @@ for scene, full, part, every_opt, every in cases:
         check(r.returncode == 0 and hash_of(r) == straight,
               "%s: --restart in a fresh process, %s thread(s): the straight run's hash" % (scene, threads),
               "%s\n%s against %s" % (r.stderr, hash_of(r), straight))
+        rows = re.search(r"monitor \d+ rows, sum \S+", r.stdout)
+        check(rows and rows.group(0) in straight_out, "%s: the monitor's records in memory: the whole run's" % scene,
+              r.stdout + straight_out)
         check(read(os.path.join(d, o, "probe.csv")) == read(os.path.join(d, out, "probe.csv")),
               "%s: the monitor file continues: the straight run's rows, none twice" % scene)
         if scene == "bar":
