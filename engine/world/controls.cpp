@@ -240,27 +240,38 @@ void validate_controls(const Controls& c) {
     if (const char* rule = s.violated(c)) throw Error(msg("controls: ", s.name, " ", rule, ", got ", s.value_text(c)));
 }
 
+namespace {
+// One control's value, either way.
+template <class Archive>
+void archive_value(Archive& ar, const ControlSpec& s, Controls& c) {
+  switch (s.type) {
+    case ControlType::Number:
+      ar(s.number(c));
+      break;
+    case ControlType::Integer:
+      ar(s.integer(c));
+      break;
+    case ControlType::Flag:
+      ar(s.flag(c));
+      break;
+    case ControlType::Vector:
+      ar(s.vector(c));
+      break;
+    case ControlType::Choice: {
+      int choice = s.get_choice(c);
+      ar(choice);
+      if constexpr (Archive::reading) s.set_choice(c, choice);
+      break;
+    }
+  }
+}
+}  // namespace
+
 void archive_controls(ArchiveWriter& ar, Controls& c) {
   ar(std::uint64_t(std::size(kControls)));
   for (const ControlSpec& s : kControls) {
     ar(std::string(s.name), s.type);
-    switch (s.type) {
-      case ControlType::Number:
-        ar(s.number(c));
-        break;
-      case ControlType::Integer:
-        ar(s.integer(c));
-        break;
-      case ControlType::Flag:
-        ar(s.flag(c));
-        break;
-      case ControlType::Vector:
-        ar(s.vector(c));
-        break;
-      case ControlType::Choice:
-        ar(s.get_choice(c));
-        break;
-    }
+    archive_value(ar, s, c);
   }
 }
 
@@ -276,25 +287,7 @@ void archive_controls(ArchiveReader& ar, Controls& c) {
     if (!s || s->type != type)
       throw Error(msg(ar.what(), " holds a control '", name.substr(0, 40),
                       "' this dda does not know (damaged, or written by another build of dda)"));
-    int choice = 0;
-    switch (type) {
-      case ControlType::Number:
-        ar(s->number(c));
-        break;
-      case ControlType::Integer:
-        ar(s->integer(c));
-        break;
-      case ControlType::Flag:
-        ar(s->flag(c));
-        break;
-      case ControlType::Vector:
-        ar(s->vector(c));
-        break;
-      case ControlType::Choice:
-        ar(choice);
-        s->set_choice(c, choice);
-        break;
-    }
+    archive_value(ar, *s, c);
     if (const char* rule = s->violated(c))
       throw Error(msg(ar.what(), " is damaged: its control ", s->name, " ", rule, ", got ", s->value_text(c)));
   }
