@@ -7,8 +7,10 @@ damaged files and a restart of another model are refused with a message.
 Run: restart_test.py path/to/dda"""
 import os
 import re
+import signal
+import subprocess
 
-from common import SOURCE, check, finish, read, run, scratch, write
+from common import DDA, SOURCE, check, finish, read, run, scratch, write
 
 d = scratch("restart")
 # Each scene steps `steps` (or runs to `time`) and prints its hash. A monitor
@@ -88,6 +90,22 @@ for scene, full, part, every_opt, every in cases:
         log = read(os.path.join(d, o, "run.log")).split("==== dda run")[-1]
         check(re.search(r"restart: model 1 continues from \S+checkpoint.ckpt at step \d+", log) is not None,
               scene + ": the run log says where the restart continued", log)
+
+# Ctrl-C: the run stops at a step boundary with a checkpoint (none was due yet), and
+# --restart from it ends with the straight run's hash.
+args = [DDA, "run", "scene.lua", "--set", "source=" + SOURCE, "--set", "scene=slope", "--set", "time=20"]
+r = dda("--set", "scene=slope", "--set", "time=20", "--out", "int-straight")
+straight = hash_of(r)
+p = subprocess.Popen(args + ["--out", "int", "--checkpoint-every", "1000000"], cwd=d, stderr=subprocess.PIPE,
+                     stdout=subprocess.PIPE, text=True, env=dict(os.environ, DDA_PROGRESS_SECONDS="0"))
+line = p.stderr.readline()  # the first progress line: stepping has begun
+p.send_signal(signal.SIGINT)
+out, err = p.communicate(timeout=120)
+ckpt = os.path.join(d, "int", "checkpoint.ckpt")
+check(p.returncode == 130 and os.path.exists(ckpt), "Ctrl-C: exit 130 and a checkpoint", line + err)
+r = dda("--set", "scene=slope", "--set", "time=20", "--out", "int", "--restart", ckpt)
+check(r.returncode == 0 and hash_of(r) == straight, "--restart after Ctrl-C: the straight run's hash",
+      "%s\n%s against %s" % (r.stderr, hash_of(r), straight))
 
 # m:save and dda.load: in the same script (a branch point) and in a fresh process.
 write(os.path.join(d, "branch.lua"), r"""
