@@ -40,7 +40,9 @@ int dda_load(lua_State* L) {
     fail("dda.load: ", e.what());
   }
   for (const std::string& w : warnings) warn("dda.load: " + w);
-  push_model(L, std::move(model)).number = ++s.models_created;
+  ScriptModel& m = push_model(L, std::move(model));
+  m.number = ++s.models_created;
+  m.last_checkpoint_time = m.world().time();  // --checkpoint-every T s counts from here
   attach_session_frames(L, lua_gettop(L));
   attach_session_vtu(L, lua_gettop(L));
   return 1;
