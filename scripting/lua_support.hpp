@@ -187,6 +187,16 @@ class TimeInput {
   // Not for functions.
   dda::History engine_history() const;
 
+  // Checkpoints (core/archive.hpp): a constant or a table as it is; of a
+  // function only that it was one, and where (a checkpoint cannot hold Lua
+  // code): after reading, is_lost_function().
+  template <class Archive>
+  void fields(Archive& ar) {
+    ar(kind_, value_, t_, v_, what_, where_);
+  }
+  bool is_lost_function() const { return kind_ == Kind::Function && !fn_.valid(); }
+  const std::string& where() const { return where_; }
+
  private:
   enum class Kind { Constant, Table, Function };
   Kind kind_ = Kind::Constant;
@@ -209,9 +219,20 @@ class VecTimeInput {
   bool is_constant() const { return !fn_.valid() && x_.is_constant() && y_.is_constant(); }
   Vec2 at(lua_State* L, double t) const;
 
+  // As TimeInput's.
+  template <class Archive>
+  void fields(Archive& ar) {
+    bool function = fn_.valid() || lost_function_;
+    ar(x_, y_, function, what_, where_);
+    if constexpr (Archive::reading) lost_function_ = function;
+  }
+  bool is_lost_function() const { return lost_function_ || x_.is_lost_function() || y_.is_lost_function(); }
+  std::string where() const { return lost_function_ ? where_ : x_.is_lost_function() ? x_.where() : y_.where(); }
+
  private:
   TimeInput x_, y_;
   LuaRef fn_;
+  bool lost_function_ = false;  // read from a checkpoint: was a function
   std::string what_, where_;
 };
 

@@ -1,6 +1,7 @@
 // The dda executable:
 //   dda run SCRIPT.lua [--out DIR] [--threads N] [--set NAME=VALUE]... [--quiet]
-//                      [--frames N [--frame-field F] [--frame-size WxH]] [-- ARGS...]
+//                      [--frames N [--frame-field F] [--frame-size WxH]]
+//                      [--checkpoint-every N|Ts] [--restart FILE] [-- ARGS...]
 //   dda console [SCRIPT.lua] [--out DIR] [--threads N] [--set NAME=VALUE]...
 //   dda SCRIPT.lua ...      (same as dda run)
 //   dda --help | --version
@@ -40,6 +41,10 @@ const char* kUsage =
     "                     sigma_1, von_mises, velocity, displacement, none\n"
     "  --frame-size WxH   their size in pixels (default 1280x720)\n"
     "  --vtu N            every model writes ParaView files (VTU, PVD) every N steps into DIR/vtu\n"
+    "  --checkpoint-every N | Ts  every model writes DIR/checkpoint.ckpt every N steps or T s of\n"
+    "                     simulated time (e.g. 0.01s), and when Ctrl-C stops the run\n"
+    "  --restart FILE     continue from a checkpoint: the script runs again, and its model takes\n"
+    "                     the checkpoint's state at its first stepping call\n"
     "exit status: 0 success, 1 error in the script, 2 bad command line, 130 interrupted (Ctrl-C)\n";
 
 int usage_error(const char* fmt, const char* arg) {
@@ -171,6 +176,27 @@ int main(int argc, char** argv) {
       if (!v || !*v || *end != '\0' || n < 1)
         return usage_error("--vtu needs a whole number of steps >= 1, got '%s'", v ? v : "");
       opt.session.vtu_every = n;
+    } else if (a == "--restart") {
+      const char* v = value("--restart");
+      if (!v || !*v) return usage_error("%s needs a checkpoint file", "--restart");
+      if (command != "run") return usage_error("%s: only dda run continues from a checkpoint", "--restart");
+      opt.session.restart_file = v;
+    } else if (a == "--checkpoint-every") {
+      // N (steps) or Ts (seconds of simulated time)
+      const char* v = value("--checkpoint-every");
+      long steps = 0;
+      double seconds = 0;
+      char unit = 0, tail = 0;
+      if (v && std::sscanf(v, "%ld%c", &steps, &tail) == 1 && steps >= 1) {
+        opt.session.checkpoint_steps = steps;
+      } else if (v && std::sscanf(v, "%lf%c%c", &seconds, &unit, &tail) == 2 && unit == 's' && seconds > 0) {
+        opt.session.checkpoint_seconds = seconds;
+      } else {
+        return usage_error(
+            "--checkpoint-every needs N (steps >= 1) or Ts (seconds of simulated time > 0, e.g. "
+            "0.01s), got '%s'",
+            v ? v : "");
+      }
     } else if (a == "--quiet" || a == "-q") {
       opt.session.quiet = true;
     } else if (a.rfind("--", 0) == 0) {

@@ -4,11 +4,14 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <limits>
 
+#include "core/archive.hpp"
 #include "core/error.hpp"
 #include "geometry/polygon.hpp"
 #include "session.hpp"
+#include "world/checkpoint.hpp"
 
 namespace dda::script {
 
@@ -47,6 +50,7 @@ void Monitor::close() { file.close(); }
 // ---- model -------------------------------------------------------------------------------
 
 ScriptModel::ScriptModel(const Controls& controls) : world_(std::make_unique<World>(controls)) {}
+ScriptModel::ScriptModel(World world) : world_(std::make_unique<World>(std::move(world))) {}
 ScriptModel::~ScriptModel() = default;
 
 void ScriptModel::close() {
@@ -359,6 +363,127 @@ StepStats ScriptModel::step(lua_State* L) {
     if (n % m->every == 0) record(*m);
   for (auto& h : hooks_) h->after_step(*world_);
   return st;
+}
+
+// ---- checkpoints -----------------------------------------------------------------------------
+
+template <class Archive>
+void ScriptModel::script_fields(Archive& ar, std::vector<SavedMonitor>& monitors) {
+  ar.section("script model");
+  ar(number, loads_, pressures_, targets_, fixed_points_, has_domain_, generated_, totals_);
+  ar.section("monitors");
+  ar(monitors);
+}
+
+void ScriptModel::save(const std::filesystem::path& path) const {
+  std::vector<SavedMonitor> monitors;
+  for (const auto& m : monitors_) monitors.push_back({m->name, m->steps, m->times, m->values});
+  ArchiveWriter ar;
+  const_cast<ScriptModel*>(this)->script_fields(ar, monitors);  // writing only reads
+  save_checkpoint(*world_, path, ar.bytes());
+}
+
+std::unique_ptr<ScriptModel> ScriptModel::load(const std::filesystem::path& path, std::vector<std::string>& warnings) {
+  Checkpoint c = load_checkpoint(path);
+  auto m = std::make_unique<ScriptModel>(std::move(c.world));
+  ArchiveReader ar(c.extra, msg("checkpoint '", path.string(), "'"));
+  m->script_fields(ar, m->saved_monitors_);
+  // Lua functions do not travel: each such input keeps the value it gave last.
+  auto lost = [&](const char* what, std::size_t i, const std::string& where, const std::string& value) {
+    warnings.push_back(msg(what, " ", i + 1, " was driven by a Lua function (", where,
+                           "), which a checkpoint cannot hold: it keeps its last value, ", value));
+  };
+  for (std::size_t i = 0; i < m->loads_.size(); ++i) {
+    ScriptPointLoad& l = m->loads_[i];
+    if (!l.force.is_lost_function()) continue;
+    lost("point load", i, l.force.along ? l.force.magnitude.where() : l.force.xy.where(),
+         msg("(", l.current.x(), ", ", l.current.y(), ") N"));
+    ForceInput frozen;
+    frozen.xy = VecTimeInput::constant(l.current);
+    l.force = std::move(frozen);
+  }
+  for (std::size_t i = 0; i < m->pressures_.size(); ++i) {
+    ScriptPressure& p = m->pressures_[i];
+    if (!p.pressure.is_lost_function()) continue;
+    lost("pressure", i, p.pressure.where(), msg(p.current, " Pa"));
+    p.pressure = TimeInput(p.current);
+  }
+  for (std::size_t i = 0; i < m->targets_.size(); ++i) {
+    ScriptTarget& t = m->targets_[i];
+    if (!t.input.is_lost_function()) continue;
+    lost("displacement target", i, t.input.where(), msg(t.current, " m"));
+    t.input = TimeInput(t.current);
+  }
+  return m;
+}
+
+namespace {
+// The step of a monitor CSV row ("step,time,..."), or -1.
+long row_step(const std::string& line) {
+  char* end = nullptr;
+  const long step = std::strtol(line.c_str(), &end, 10);
+  return end != line.c_str() && *end == ',' ? step : -1;
+}
+}  // namespace
+
+void ScriptModel::restore(ScriptModel& saved, const std::string& what) {
+  const World& here = *world_;
+  const World& there = *saved.world_;
+  auto same = [&](const char* things, std::size_t n_here, std::size_t n_there) {
+    if (n_here != n_there)
+      throw Error(msg(what, " holds a model with ", n_there, " ", things, "; the script built model ", number, " with ",
+                      n_here, ": restart with the script (and --set values) that wrote the checkpoint"));
+  };
+  same("blocks", here.block_count(), there.block_count());
+  for (BlockId b = 0; b < static_cast<BlockId>(here.block_count()); ++b) {
+    const auto a = here.block_initial_vertices(b), c = there.block_initial_vertices(b);
+    if (!std::equal(a.begin(), a.end(), c.begin(), c.end()))
+      throw Error(msg(what, " holds a model whose block ", b + 1, " started elsewhere than the script's block ", b + 1,
+                      ": restart with the script (and --set values) that wrote the checkpoint"));
+  }
+  same("rock materials", here.rock_material_count(), there.rock_material_count());
+  same("joint materials", here.joint_material_count(), there.joint_material_count());
+  same("point loads", loads_.size(), saved.loads_.size());
+  same("pressures", pressures_.size(), saved.pressures_.size());
+  same("displacement targets", targets_.size(), saved.targets_.size());
+  same("fixed points", fixed_points_, saved.fixed_points_);
+  same("monitors", monitors_.size(), saved.saved_monitors_.size());
+  for (std::size_t i = 0; i < monitors_.size(); ++i) {
+    const SavedMonitor& s = saved.saved_monitors_[i];
+    if (s.name != monitors_[i]->name || s.values.size() != monitors_[i]->fields.size())
+      throw Error(msg(what, " holds a model whose monitor ", i + 1, " is '", s.name, "' with ", s.values.size(),
+                      " fields; the script's is '", monitors_[i]->name, "' with ", monitors_[i]->fields.size(),
+                      ": restart with the script (and --set values) that wrote the checkpoint"));
+  }
+
+  const int threads = world_->controls().threads;  // of this run, not of the state
+  *world_ = std::move(*saved.world_);
+  saved.world_.reset();
+  world_->controls().threads = threads;
+  for (std::size_t i = 0; i < loads_.size(); ++i) loads_[i].current = saved.loads_[i].current;
+  for (std::size_t i = 0; i < pressures_.size(); ++i) pressures_[i].current = saved.pressures_[i].current;
+  for (std::size_t i = 0; i < targets_.size(); ++i) targets_[i].current = saved.targets_[i].current;
+  totals_ = saved.totals_;  // since the start of the run being continued
+
+  // Each monitor: the straight run's records up to the checkpoint, in
+  // memory and in its file, then this run's.
+  const long step = world_->step_count();
+  for (std::size_t i = 0; i < monitors_.size(); ++i) {
+    Monitor* m = monitors_[i].get();
+    SavedMonitor& s = saved.saved_monitors_[i];
+    m->steps = std::move(s.steps);
+    m->times = std::move(s.times);
+    m->values = std::move(s.values);
+    m->started = !m->steps.empty();
+    std::string rows;
+    for (std::size_t k = 1; k < m->previous_lines.size(); ++k) {
+      const long row = row_step(m->previous_lines[k]);
+      if (row >= 0 && row <= step) rows.append(m->previous_lines[k]).append("\n");
+    }
+    if (m->file.is_open() && !rows.empty()) m->file.append(rows);
+    m->previous_lines.clear();
+  }
+  for (auto& h : hooks_) h->restarted(*world_);
 }
 
 }  // namespace dda::script

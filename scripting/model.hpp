@@ -43,9 +43,24 @@ struct Monitor {
   std::vector<std::vector<double>> values;  // values[field][row]
   AppendFile file;                          // the CSV, one whole row per record (not open: in memory only)
   std::string write_error;                  // once a row could not be written: every later record raises it again
+  // dda run --restart: the rows the CSV file held before this run (header
+  // first), put back up to the checkpoint's step when the model restarts.
+  std::vector<std::string> previous_lines;
 
   // Closes the CSV; throws dda::Error if the system reports a failure.
   void close();
+};
+
+// A monitor's record in a checkpoint: what it recorded so far.
+struct SavedMonitor {
+  std::string name;
+  std::vector<long> steps;
+  std::vector<double> times;
+  std::vector<std::vector<double>> values;
+  template <class Archive>
+  void fields(Archive& ar) {
+    ar(name, steps, times, values);
+  }
 };
 
 // ---- Loads ----------------------------------------------------------------
@@ -61,6 +76,11 @@ struct ForceInput {
   bool engine_driven() const { return along && !magnitude.is_function(); }
   bool constant() const { return along ? magnitude.is_constant() : xy.is_constant(); }
   Vec2 at(lua_State* L, double t) const { return along ? Vec2(direction * magnitude.at(L, t)) : xy.at(L, t); }
+  bool is_lost_function() const { return along ? magnitude.is_lost_function() : xy.is_lost_function(); }
+  template <class Archive>
+  void fields(Archive& ar) {
+    ar(xy, along, direction, magnitude);
+  }
 };
 
 struct ScriptPointLoad {
@@ -70,6 +90,10 @@ struct ScriptPointLoad {
   ForceInput force;
   bool engine_history = false;  // the World holds a history for it (all later values go through one)
   Vec2 current = Vec2::Zero();  // last value set from here
+  template <class Archive>
+  void fields(Archive& ar) {
+    ar(world_id, block, point, force, engine_history, current);
+  }
 };
 
 // Prescribed displacements (the paper's DHI): engine targets at material
@@ -81,6 +105,10 @@ struct ScriptTarget {
   Vec2 vector = Vec2::Zero();  // Mode::Vector
   TimeInput input;             // magnitude along each point's direction (a table, or a function for Displacement)
   double current = 0;          // last value of a function input
+  template <class Archive>
+  void fields(Archive& ar) {
+    ar(world_ids, mode, vector, input, current);
+  }
 };
 
 // A pressure on a set of edges (the engine's SHI load: normal to each edge,
@@ -92,6 +120,10 @@ struct ScriptPressure {
   int world_id = -1;
   TimeInput pressure;
   double current = 0;  // last value of a function input
+  template <class Archive>
+  void fields(Archive& ar) {
+    ar(edges, world_id, pressure, current);
+  }
 };
 
 // Something that follows the run step by step (the renderer's frame
@@ -101,6 +133,8 @@ struct StepHook {
   virtual void before_step(const World&) {}
   virtual void after_step(const World&) {}  // after the monitors have recorded the step
   virtual void monitor_added(int /*tracked_point*/, const std::string& /*name*/) {}
+  // dda run --restart: the World now holds the checkpoint's state.
+  virtual void restarted(const World&) {}
 };
 
 struct Totals {
@@ -110,11 +144,16 @@ struct Totals {
   long cg_iterations = 0;
   long patch_iterations = 0;
   double wall_seconds = 0;
+  template <class Archive>
+  void fields(Archive& ar) {
+    ar(steps, step_cuts, open_close_iterations, cg_iterations, patch_iterations, wall_seconds);
+  }
 };
 
 class ScriptModel {
  public:
   explicit ScriptModel(const Controls& controls);
+  explicit ScriptModel(World world);
   ~ScriptModel();
 
   World& world() { return *world_; }
@@ -194,6 +233,29 @@ class ScriptModel {
 
   bool controls_logged = false;  // the run log has this model's controls
 
+  // ---- checkpoints (world/checkpoint.hpp) -------------------------------------
+  // Its number in the run: 1 for the first model made (dda.model or
+  // dda.load), 2 for the next...: the model a --restart continues.
+  int number = 0;
+  // m:save: the World, and beside it the loads' inputs (a Lua function as
+  // the last value it gave: a checkpoint cannot hold Lua code) and what the
+  // monitors recorded.
+  void save(const std::filesystem::path& path) const;
+  // dda.load: the model of a checkpoint; an input that was a Lua function
+  // keeps its last value (one warning each in `warnings`).
+  static std::unique_ptr<ScriptModel> load(const std::filesystem::path& path, std::vector<std::string>& warnings);
+  // dda run --restart: this model, built again by the script, takes the
+  // state of `saved` (its loads keep the script's inputs; monitors take the
+  // saved records, their files keep their rows up to the checkpoint). Throws
+  // dda::Error, naming `what`, when
+  // the script built another model.
+  void restore(ScriptModel& saved, const std::string& what);
+  // After a restore: the step count the straight run had where the script
+  // now stands (stepping calls that end before the checkpoint return at
+  // once); empty once caught up or unknown (wrap_model.cpp, run_loop).
+  std::optional<long> replay_mark;
+  double last_checkpoint_time = 0;  // --checkpoint-every T s: the time of the last one
+
  private:
   void apply_loads(lua_State* L, double t);
   void record(Monitor& m);
@@ -201,6 +263,8 @@ class ScriptModel {
   void hand_over(ScriptPointLoad& load, lua_State* L);
   void hand_over(ScriptTarget& t, lua_State* L);
   void push_force(ScriptPointLoad& load, const Vec2& f);
+  template <class Archive>
+  void script_fields(Archive& ar, std::vector<SavedMonitor>& monitors);
 
   std::unique_ptr<World> world_;
   geometry::CutInput cut_;
@@ -214,6 +278,7 @@ class ScriptModel {
   std::vector<std::unique_ptr<Monitor>> monitors_;
   std::vector<std::unique_ptr<StepHook>> hooks_;
   int fixed_points_ = 0;
+  std::vector<SavedMonitor> saved_monitors_;  // of a model read from a checkpoint
   Totals totals_;
   bool busy_ = false;
 };

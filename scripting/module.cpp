@@ -1,6 +1,7 @@
-// The `dda` module table: dda.model{...}, dda.param(name, default),
+// The `dda` module table: dda.model{...}, dda.load(file), dda.param(name, default),
 // dda.output(name), dda.out_dir(), dda.fields, dda.version.
 #include <cstdio>
+#include <filesystem>
 #include <system_error>
 
 #include "output_file.hpp"
@@ -15,10 +16,35 @@ namespace {
 int dda_model(lua_State* L) {
   Controls c;
   if (!lua_isnoneornil(L, 1)) parse_controls(controls_options(L, 1, "dda.model"), c);
-  push_new_model(L, c);
-  ++session(L).models_created;
+  push_new_model(L, c).number = ++session(L).models_created;
   attach_session_frames(L, lua_gettop(L));  // dda run --frames N
   attach_session_vtu(L, lua_gettop(L));     // dda run --vtu N
+  return 1;
+}
+
+// dda.load(file) → the model of a checkpoint written by m:save or
+// --checkpoint-every (a relative name not found as given is looked for in
+// the output folder, where they write).
+int dda_load(lua_State* L) {
+  const std::string file = check_string(L, 1, "dda.load", "argument 1 (file)");
+  Session& s = session(L);
+  std::filesystem::path path = file;
+  std::error_code ec;
+  if (path.is_relative() && !std::filesystem::exists(path, ec) && std::filesystem::exists(s.out_dir / path, ec))
+    path = s.out_dir / path;
+  std::vector<std::string> warnings;
+  std::unique_ptr<ScriptModel> model;
+  try {
+    model = ScriptModel::load(path, warnings);
+  } catch (const Error& e) {
+    fail("dda.load: ", e.what());
+  }
+  for (const std::string& w : warnings) warn("dda.load: " + w);
+  ScriptModel& m = push_model(L, std::move(model));
+  m.number = ++s.models_created;
+  m.last_checkpoint_time = m.world().time();  // --checkpoint-every T s counts from here
+  attach_session_frames(L, lua_gettop(L));
+  attach_session_vtu(L, lua_gettop(L));
   return 1;
 }
 
@@ -158,6 +184,11 @@ int open_module(lua_State* L) {
   }
   static const Method functions[] = {
       {"model", guarded<dda_model>, "dda.model{plane = \"stress\" | \"strain\", g0 = ..., ...controls} → Model"},
+      {"load", guarded<dda_load>,
+       "dda.load(file) → Model: the model of a checkpoint (m:save, dda run --checkpoint-every), as it was when "
+       "saved; it steps on exactly as the saved one would have. A relative name not found as given is looked for in "
+       "the output folder. Loads given as Lua functions keep their last value (a warning names each); monitors and "
+       "frame sequences are the script's to add again."},
       {"param", guarded<dda_param>,
        "dda.param(name, default) → the --set NAME=VALUE value (a number when it reads as one, true/false when the "
        "default is a boolean), else the default."},

@@ -10,8 +10,10 @@
 #include <filesystem>
 #include <thread>
 
+#include "core/error.hpp"
 #include "dda_version.hpp"
 #include "lua_support.hpp"
+#include "model.hpp"
 #include "scripting.hpp"
 
 namespace dda::script {
@@ -273,6 +275,26 @@ void log_start(Session& s, const RunOptions& options) {
   std::string params;
   for (const auto& [k, v] : s.params) params += " " + k + "=" + v;
   s.log.line("parameters (--set):" + (params.empty() ? std::string(" none") : params));
+  if (s.checkpoint_steps > 0 || s.checkpoint_seconds > 0)
+    s.log.line(msg("checkpoints: every ",
+                   s.checkpoint_steps > 0 ? msg(s.checkpoint_steps, " steps") : msg(s.checkpoint_seconds, " s"),
+                   " into ", (s.out_dir / "checkpoint.ckpt").string()));
+}
+
+// --restart FILE: read and checked before the script runs (a wrong file
+// fails at once, not at the first step).
+bool read_restart(Session& s, std::string& error) {
+  if (s.restart_file.empty()) return true;
+  try {
+    std::vector<std::string> ignored;  // the script gives its Lua functions again
+    s.restart = ScriptModel::load(s.restart_file, ignored);
+  } catch (const Error& e) {
+    error = msg("--restart: ", e.what());
+    return false;
+  }
+  s.log.line(msg("restart from ", s.restart_file, ": model ", s.restart->number, " at step ",
+                 s.restart->world().step_count(), ", t = ", s.restart->world().time(), " s"));
+  return true;
 }
 
 }  // namespace
@@ -367,6 +389,13 @@ int run_batch(const RunOptions& options) {
   if (!s.quiet) s.progress = isatty(fileno(stderr)) && isatty(fileno(stdout)) ? ProgressMode::Bar : ProgressMode::Lines;
   if (const char* env = std::getenv("DDA_PROGRESS_SECONDS"); env && *env) s.progress_seconds = std::atof(env);
   log_start(s, options);
+  std::string restart_error;
+  if (!read_restart(s, restart_error)) {
+    std::fprintf(stderr, "dda: %s\n", restart_error.c_str());
+    s.log.line("error: " + restart_error);
+    s.log.line("end: exit status 1 (error)");
+    return 1;
+  }
   lua_State* L = new_state(std::move(s));
   if (!L) {
     std::fprintf(stderr, "dda: cannot create a Lua state (not enough memory)\n");
@@ -378,8 +407,13 @@ int run_batch(const RunOptions& options) {
   g_batch = &batch;
   std::string error;
   const std::filesystem::path script = resolve_script(options.script);
-  const bool ok = run_file(L, script.string(), options.script_args, error);
+  bool ok = run_file(L, script.string(), options.script_args, error);
   g_batch = nullptr;
+  if (ok && session(L).restart) {
+    ok = false;
+    error = msg("--restart ", session(L).restart_file, ": the script never stepped its model ",
+                session(L).restart->number, ", which the checkpoint holds: nothing was continued");
+  }
   return finish_batch(L, ok, std::move(error), 0, start);
 }
 

@@ -10,6 +10,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <map>
+#include <memory>
 #include <set>
 #include <string>
 #include <vector>
@@ -19,6 +20,7 @@
 namespace dda::script {
 
 using dda::AppendFile;
+class ScriptModel;
 
 // How stepping calls show their progress: a redrawn line on a terminal,
 // plain lines (at most one every `progress_seconds`, and one per 5 % done)
@@ -91,6 +93,16 @@ struct Session {
   long vtu_every = 0;  // --vtu N: every model writes ParaView files every N steps into <out>/vtu
   RunLog log;          // dda run: <out>/run.log
   std::map<std::string, ResultValue> results;  // the run's results (dda.result, the script's return table)
+  // dda run --restart FILE: the checkpoint's model, held until the script's
+  // model of the same number (1: its first dda.model) makes its first
+  // stepping call and takes its state (ScriptModel::restore).
+  std::shared_ptr<ScriptModel> restart;
+  std::string restart_file;
+  // --checkpoint-every N | Ts: every model writes <out>/checkpoint.ckpt
+  // (checkpoint_2.ckpt for the second, ...) every N steps or T s of
+  // simulated time, and when Ctrl-C stops it. 0: none.
+  long checkpoint_steps = 0;
+  double checkpoint_seconds = 0;
 };
 
 // Prints "dda: warning: text" on stderr and writes it to the run log of

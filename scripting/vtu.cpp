@@ -3,7 +3,9 @@
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
+#include <fstream>
 #include <system_error>
 
 #include "core/error.hpp"
@@ -205,6 +207,24 @@ std::filesystem::path VtuSeries::write(const World& world) {
   write_pvd("blocks");
   if (options_.contacts) write_pvd("contacts");
   return blocks;
+}
+
+void VtuSeries::continue_from(const World& world) {
+  std::ifstream in(pvd("blocks"));
+  std::string line;
+  times_.clear();
+  while (std::getline(in, line)) {
+    const auto at = line.find("timestep=\"");
+    if (at == std::string::npos) continue;
+    const double t = std::strtod(line.c_str() + at + 10, nullptr);
+    if (t > world.time()) break;  // written after the checkpoint by the run being continued
+    times_.push_back(t);
+  }
+  last_step_ = world.step_count();  // its frame, if due, is among those kept
+  if (options_.every_time > 0)
+    next_time_ = (std::floor(world.time() / options_.every_time + 1e-9) + 1) * options_.every_time;
+  write_pvd("blocks");
+  if (options_.contacts) write_pvd("contacts");
 }
 
 void VtuSeries::write_pvd(const std::string& kind) const {

@@ -46,6 +46,10 @@ class VtuSeries {
   void maybe_write(const World& world);
   // Writes frame count() now; returns the blocks file.
   std::filesystem::path write(const World& world);
+  // dda run --restart: the series goes on from the world's (restored) step:
+  // the frames the folder's .pvd lists up to its time are kept, numbering
+  // continues after them, and the .pvd files list them again.
+  void continue_from(const World& world);
   int count() const { return static_cast<int>(times_.size()); }
   std::filesystem::path pvd(const std::string& kind = "blocks") const;
   const VtuOptions& options() const { return options_; }

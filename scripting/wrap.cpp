@@ -123,10 +123,14 @@ void add_model_methods(lua_State* L, const Method* methods) { add_methods(L, kMo
 // ---- models ---------------------------------------------------------------------------
 
 ScriptModel& push_new_model(lua_State* L, const Controls& controls) {
+  return push_model(L, std::make_unique<ScriptModel>(controls));
+}
+
+ScriptModel& push_model(lua_State* L, std::unique_ptr<ScriptModel> model) {
   auto* box = static_cast<ModelBox*>(lua_newuserdatauv(L, sizeof(ModelBox), 0));
   box->model = nullptr;
   luaL_setmetatable(L, kModelType);  // its __gc deletes the model
-  box->model = new ScriptModel(controls);
+  box->model = model.release();
   return *box->model;
 }
 

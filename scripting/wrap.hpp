@@ -72,7 +72,8 @@ void define_type(lua_State* L, const char* type, const Method* methods, const lu
 void add_methods(lua_State* L, const char* type, const Method* methods);
 
 // ---- models --------------------------------------------------------------------
-ScriptModel& push_new_model(lua_State* L, const Controls& controls);  // pushes a dda.Model
+ScriptModel& push_new_model(lua_State* L, const Controls& controls);        // pushes a dda.Model
+ScriptModel& push_model(lua_State* L, std::unique_ptr<ScriptModel> model);  // pushes it as a dda.Model
 // The model at idx (self of a method): must be an open dda.Model.
 ScriptModel& check_model(lua_State* L, int idx, std::string_view call);
 // Refuses model changes while load histories are evaluated.

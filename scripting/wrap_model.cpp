@@ -4,8 +4,10 @@
 #include <cinttypes>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <limits>
 #include <map>
+#include <optional>
 
 #include "session.hpp"
 #include "wrap.hpp"
@@ -124,10 +126,49 @@ struct RunPlan {
 
 std::string where_now(const World& w) { return msg("at step ", w.step_count(), ", t = ", w.time(), " s"); }
 
+// ---- checkpoints ----------------------------------------------------------------------------
+
+std::filesystem::path periodic_checkpoint_path(const Session& s, int model) {
+  return s.out_dir / (model <= 1 ? std::string("checkpoint.ckpt") : msg("checkpoint_", model, ".ckpt"));
+}
+
+// --checkpoint-every N | Ts: after a step (and its callback) when due, or
+// `now` (Ctrl-C). The file is replaced atomically: the last one stays whole
+// whatever happens to the next.
+void checkpoint_if_due(lua_State* L, ScriptModel& m, bool now = false) {
+  const Session& s = session(L);
+  if (s.checkpoint_steps <= 0 && s.checkpoint_seconds <= 0) return;
+  const World& w = m.world();
+  const bool due = now || (s.checkpoint_steps > 0 && w.step_count() % s.checkpoint_steps == 0) ||
+                   (s.checkpoint_seconds > 0 && w.time() >= m.last_checkpoint_time + s.checkpoint_seconds);
+  if (!due) return;
+  std::error_code ec;
+  std::filesystem::create_directories(s.out_dir, ec);
+  m.save(periodic_checkpoint_path(s, m.number));
+  m.last_checkpoint_time = w.time();
+}
+
+// dda run --restart: the model the checkpoint was written from (by its
+// number in the run) takes the checkpoint's state at its first stepping
+// call, once the script has built it again with its loads and monitors.
+void restart_if_pending(lua_State* L, ScriptModel& m) {
+  Session& s = session(L);
+  if (!s.restart || s.restart->number != m.number) return;
+  const long mark = m.world().step_count();  // where the straight run stood at this call
+  m.restore(*s.restart, msg("--restart ", s.restart_file));
+  s.restart.reset();
+  m.replay_mark = mark;
+  m.last_checkpoint_time = m.world().time();
+  s.log.line(msg("restart: model ", m.number, " continues from ", s.restart_file, " ", where_now(m.world())));
+}
+
 // Between steps: stop if Ctrl-C was pressed (worded only then: no string is
-// built in a step loop that goes on).
-void stop_if_interrupted(const World& w) {
-  if (interrupt_requested()) check_interrupt(where_now(w).c_str());
+// built in a step loop that goes on), with a checkpoint first when the run
+// writes them.
+void stop_if_interrupted(lua_State* L, ScriptModel& m) {
+  if (!interrupt_requested()) return;
+  checkpoint_if_due(L, m, true);
+  check_interrupt(where_now(m.world()).c_str());
 }
 
 // The run log gets each model's controls at its first stepping call (what
@@ -165,11 +206,17 @@ void log_controls_once(lua_State* L, ScriptModel& m) {
 // The stepping loop shared by m:step, m:run_until and m:run. Lua runs only
 // between steps: load histories inside ScriptModel::step (before
 // World::step), the callback after the step's monitors are written.
+//
+// After a restart the model may stand ahead of the script: a call counts its
+// steps from where the straight run stood when it began (replay_mark), so
+// m:step(n) and m:run{steps = n} end where they ended in the straight run
+// (at once, if that is before the checkpoint), as m:run{time = t} does.
 void run_loop(lua_State* L, ScriptModel& m, const RunPlan& plan) {
+  restart_if_pending(L, m);
   World& w = m.world();
-  const long s0 = w.step_count();
+  const long s0 = m.replay_mark ? *m.replay_mark : w.step_count();
   const double t0 = w.time();
-  stop_if_interrupted(w);
+  stop_if_interrupted(L, m);
   log_controls_once(L, m);
   Progress progress(L, t0, plan.t_end >= 0 ? plan.t_end : 0, s0, plan.steps >= 0 ? s0 + plan.steps : 0);
   for (;;) {
@@ -180,7 +227,7 @@ void run_loop(lua_State* L, ScriptModel& m, const RunPlan& plan) {
       if (w.time() >= plan.t_end - slack) break;
     }
     m.step(L);
-    stop_if_interrupted(w);
+    stop_if_interrupted(L, m);
     progress.update(w.time(), w.step_count());
     const long done = w.step_count() - s0;
     if (plan.callback && done % plan.every == 0) {
@@ -192,6 +239,13 @@ void run_loop(lua_State* L, ScriptModel& m, const RunPlan& plan) {
       if (stop) break;
       if (m.closed()) fail("m:run: the callback closed the model");
     }
+    checkpoint_if_due(L, m);
+  }
+  // Still ahead of the script: it stands where this call ended in the
+  // straight run (known only for a count of steps).
+  if (m.replay_mark) {
+    const long end = s0 + plan.steps;
+    m.replay_mark = plan.steps >= 0 && w.step_count() > end ? std::optional<long>(end) : std::nullopt;
   }
 }
 
@@ -249,6 +303,24 @@ int m_run(lua_State* L) {
   }
   run_loop(L, m, plan);
   return push_time_and_steps(L, m);
+}
+
+// m:save(file) → path: a checkpoint of the model (a relative name goes into the output folder)
+int m_save(lua_State* L) {
+  ScriptModel& m = check_model(L, 1, "m:save");
+  check_not_busy(m, "m:save");
+  const std::filesystem::path file = check_string(L, 2, "m:save", "argument 1 (file)");
+  const Session& s = session(L);
+  const std::filesystem::path path = file.is_absolute() ? file : s.out_dir / file;
+  std::error_code ec;
+  std::filesystem::create_directories(path.parent_path(), ec);
+  try {
+    m.save(path);
+  } catch (const Error& e) {
+    fail("m:save: ", e.what());
+  }
+  lua_pushstring(L, path.string().c_str());
+  return 1;
 }
 
 // ---- read access ------------------------------------------------------------------------------------
@@ -414,6 +486,10 @@ void register_model(lua_State* L) {
       {"step", guarded<m_step>, "m:step([n = 1]) → t, step"},
       {"run_until", guarded<m_run_until>, "m:run_until(t) → t, step"},
       {"run", guarded<m_run>, "m:run{time = t | steps = n, every = N, callback = f} → t, step"},
+      {"save", guarded<m_save>,
+       "m:save(file) → path: a checkpoint of the whole model (blocks, contacts, loads, the solver's state), from "
+       "which dda.load(file) or dda run --restart continues bit for bit. A relative name goes into the output "
+       "folder; the file is replaced atomically."},
       {"time", guarded<m_time>, "m:time() → simulated time (s)"},
       {"steps", guarded<m_steps>, "m:steps() → steps taken"},
       {"dt", guarded<m_dt>, "m:dt() → the last step's time step (s)"},

@@ -4,6 +4,7 @@
 #include <cerrno>
 #include <cmath>
 #include <cstring>
+#include <fstream>
 #include <system_error>
 
 #include "session.hpp"
@@ -80,6 +81,14 @@ int m_monitor(lua_State* L) {
            " in this run; give this one another name");
     std::string header = "step,time";
     for (Field f : mon->fields) header.append(",").append(field_name(f));
+    // dda run --restart: the rows of the run being continued, put back up to
+    // the checkpoint's step when this model restarts (ScriptModel::restore).
+    if (session_.restart && session_.restart->number == m.number) {
+      std::ifstream old(mon->path);
+      std::string line;
+      while (std::getline(old, line)) mon->previous_lines.push_back(line);
+      if (mon->previous_lines.empty() || mon->previous_lines[0] != header) mon->previous_lines.clear();
+    }
     try {
       mon->file = AppendFile(mon->path, AppendFile::Mode::Truncate);
       mon->file.append(header + "\n");

@@ -448,6 +448,14 @@ void attach_session_frames(lua_State* L, int model_idx) {
                    ? s.out_dir / movie
                    : s.out_dir / (movie.stem().string() + msg("_", s.models_created) + movie.extension().string());
   }
+  // dda run --restart: the continued model's frames are a sequence of their
+  // own (its view and colours fixed afresh), beside the first run's.
+  if (s.restart && s.restart->number == s.models_created) {
+    const std::string from = msg("_from_step_", s.restart->world().step_count());
+    so.folder += from;
+    if (!so.movie.empty())
+      so.movie = so.movie.parent_path() / (so.movie.stem().string() + from + so.movie.extension().string());
+  }
   so.frame.validate();
   so.on_error = render::OnError::Continue;  // a command-line convenience never stops the run
   so.warn = [](const std::string& text) { warn(text); };

@@ -21,6 +21,9 @@ struct VtuHook : StepHook {
   void after_step(const World& w) override {
     for (auto& s : series) s->maybe_write(w);
   }
+  void restarted(const World& w) override {
+    for (auto& s : series) s->continue_from(w);
+  }
 };
 
 VtuHook& vtu_hook(ScriptModel& m) {

@@ -31,6 +31,13 @@ struct Blocks {
   std::vector<EdgeTag> edge_tag;       // what edge k → k + 1 was made from
   std::vector<Vec2> initial_centroid;
 
+  // What a checkpoint holds (core/archive.hpp): every array.
+  template <class Archive>
+  void fields(Archive& ar) {
+    ar(vertex_start, vertices, centroid, area, sxx, syy, sxy, mass, material, stress, velocity, last_displacement,
+       initial_vertices, edge_joint, edge_tag, initial_centroid);
+  }
+
   std::size_t count() const { return vertex_start.empty() ? 0 : vertex_start.size() - 1; }
   int vertex_count(BlockId b) const { return vertex_start[b + 1] - vertex_start[b]; }
   std::span<const Vec2> outline(BlockId b) const {
@@ -45,6 +52,10 @@ struct MaterialPoint {
   BlockId block;
   Vec2 point;
   Vec2 origin;
+  template <class Archive>
+  void fields(Archive& ar) {
+    ar(block, point, origin);
+  }
 };
 
 // Throws dda::Error, naming `what`, unless every edge exists (and there is one).

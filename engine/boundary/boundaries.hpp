@@ -57,6 +57,12 @@ class Boundaries {
   // force they exerted.
   void update(const Blocks& blocks, const VecX& d, const TimeScheme& scheme);
 
+  // What a checkpoint holds (core/archive.hpp): every point with its state.
+  template <class Archive>
+  void fields(Archive& ar) {
+    ar(fixed_points_, targets_, boundary_points_, boundaries_);
+  }
+
  private:
   using FixedPoint = MaterialPoint;
   struct DisplacementTarget {
@@ -67,6 +73,10 @@ class Boundaries {
     Vec2 target = Vec2::Zero();  // current target (vector)
     History history;
     enum { Fixed, Displacement, Velocity, Acceleration } mode = Fixed;
+    template <class Archive>
+    void fields(Archive& ar) {
+      ar(block, point, origin, direction, target, history, mode);
+    }
   };
   // A VBC dashpot (matrix c, N·s/m) or an SBC spring (stiffness k, N/m) at a material point.
   struct BoundaryPoint {
@@ -77,6 +87,10 @@ class Boundaries {
     Eigen::Matrix2d c;
     double k;
     Vec2 force;
+    template <class Archive>
+    void fields(Archive& ar) {
+      ar(boundary, block, point, origin, c, k, force);
+    }
   };
   struct Boundary {
     BoundaryKind kind;
@@ -84,6 +98,10 @@ class Boundaries {
     bool incident = false;  // a viscous boundary with an incident wave
     History incident_vx, incident_vy;
     Vec2 incident_velocity = Vec2::Zero();  // at the end of the last step assembled
+    template <class Archive>
+    void fields(Archive& ar) {
+      ar(kind, first, count, incident, incident_vx, incident_vy, incident_velocity);
+    }
   };
   void add_boundary(BoundaryKind kind, int first);  // of the points from `first` on
   const DisplacementTarget& target(int id) const;

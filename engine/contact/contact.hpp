@@ -42,6 +42,13 @@ struct Contact {
   double normal_force = 0;  // N (per unit thickness)
   double shear_force = 0;   // N
   double penetration = 0;   // m, positive when the vertex is inside the edge's block
+
+  // What a checkpoint holds (core/archive.hpp): every field.
+  template <class Archive>
+  void fields(Archive& ar) {
+    ar(vblock, eblock, vertex, edge, joint, state, intact, length, scale, ref_param, ref_valid, slide_sign,
+       normal_force, shear_force, penetration);
+  }
 };
 
 // What the open-close iteration changes in a contact: carried over when the

@@ -46,6 +46,13 @@ class ContactDetection {
   // The accepted step's rotations, for the redetection rule.
   void add_rotations(const VecX& d);
 
+  // What a checkpoint holds (core/archive.hpp): the range and what the
+  // list's staleness is measured from.
+  template <class Archive>
+  void fields(Archive& ar) {
+    ar(auto_range_, first_detection_, detected_vertices_, rotation_since_detection_, detected_range_);
+  }
+
  private:
   bool list_is_stale(const Blocks& blocks, double range) const;
 

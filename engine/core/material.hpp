@@ -12,6 +12,10 @@ struct RockMaterial {
   double density = 2600;  // kg/m³
   double youngs = 5e9;    // Pa
   double poisson = 0.25;  // -
+  template <class Archive>
+  void fields(Archive& ar) {
+    ar(density, youngs, poisson);
+  }
 };
 
 // Mohr-Coulomb joint. Cohesion and tensile strength act only while a contact
@@ -20,6 +24,10 @@ struct JointMaterial {
   double friction_deg = 30;     // friction angle φ, degrees (radians inside the engine)
   double cohesion = 0;          // Pa
   double tensile_strength = 0;  // Pa
+  template <class Archive>
+  void fields(Archive& ar) {
+    ar(friction_deg, cohesion, tensile_strength);
+  }
 };
 
 // Throw dda::Error naming the material ("rock material 2") and the parameter

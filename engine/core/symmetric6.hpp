@@ -34,6 +34,10 @@ class Symmetric6 {
 
   // The upper triangle, row by row.
   const std::array<double, 21>& upper() const { return u_; }
+  template <class Archive>
+  void fields(Archive& ar) {
+    ar(u_);
+  }
 
   // (this)·x, row by row, the terms of a row in column order from the first
   // product: the same bits as Eigen's Mat6·Vec6 of full() (which sums each row

@@ -12,6 +12,10 @@ struct EdgeRef {
   BlockId block = -1;
   int edge = -1;
   friend bool operator==(const EdgeRef&, const EdgeRef&) = default;
+  template <class Archive>
+  void fields(Archive& ar) {
+    ar(block, edge);
+  }
 };
 
 enum class EdgeKind : std::uint8_t {
@@ -26,6 +30,10 @@ struct EdgeTag {
   int joint_material = -1;  // for Joint edges from cutting, else -1
   int hole = -1;            // 0-based hole index for Hole edges, else -1
   friend bool operator==(const EdgeTag&, const EdgeTag&) = default;
+  template <class Archive>
+  void fields(Archive& ar) {
+    ar(kind, joint_material, hole);
+  }
 };
 
 }  // namespace dda

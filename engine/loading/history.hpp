@@ -24,6 +24,10 @@ class History {
   // acceleration to its displacement, from rest at t = 0).
   double double_integral(double t) const;
   bool empty() const { return t_.empty(); }
+  template <class Archive>
+  void fields(Archive& ar) {
+    ar(t_, v_, area_);
+  }
 
  private:
   std::vector<double> t_, v_, area_;  // area_[i] = ∫₀^{t_i}

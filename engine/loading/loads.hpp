@@ -31,22 +31,40 @@ class Loads {
   // blocks (before the blocks themselves move).
   void move_points(const Blocks& blocks, const VecX& d);
 
+  // What a checkpoint holds (core/archive.hpp): every load with its history.
+  template <class Archive>
+  void fields(Archive& ar) {
+    ar(point_loads_, point_load_histories_, pressure_loads_);
+  }
+
  private:
   struct PointLoad {
     BlockId block;
     Vec2 point;
     Vec2 force;
+    template <class Archive>
+    void fields(Archive& ar) {
+      ar(block, point, force);
+    }
   };
   struct PointLoadHistory {
     int load;
     Vec2 direction;
     History magnitude;
+    template <class Archive>
+    void fields(Archive& ar) {
+      ar(load, direction, magnitude);
+    }
   };
   struct PressureLoad {
     std::vector<EdgeRef> edges;
     double pressure;
     History history;
     bool from_history;
+    template <class Archive>
+    void fields(Archive& ar) {
+      ar(edges, pressure, history, from_history);
+    }
   };
   std::vector<PointLoad> point_loads_;
   std::vector<PointLoadHistory> point_load_histories_;

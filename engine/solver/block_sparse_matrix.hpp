@@ -50,6 +50,12 @@ class BlockSparseMatrix final : public LinearOperator {
   // Scalar sparse copy (test oracle and debugging only; not used in the step).
   Eigen::SparseMatrix<double> to_sparse() const;
 
+  // Checkpoints (core/archive.hpp): the pattern and the values.
+  template <class Archive>
+  void fields(Archive& ar) {
+    ar(n_, row_start_, cols_, diag_, values_);
+  }
+
  private:
   int n_ = 0;
   std::vector<int> row_start_, cols_, diag_;

@@ -28,6 +28,9 @@
 
 namespace dda {
 
+class ArchiveWriter;
+class ArchiveReader;
+
 struct SolveReport {
   bool converged = false;
   bool finite = true;  // false when a NaN/Inf appeared
@@ -74,6 +77,12 @@ class LinearSolver {
   // The backend that solves ("pcg", "cholmod"), for the step's stats.
   virtual const char* name() const = 0;
 
+  // Checkpoints (world/checkpoint.hpp): what the solver carries from one step
+  // to the next that changes a result bit (a preconditioner kept while it
+  // still serves, a choice made from the last step). The default: nothing.
+  virtual void save_state(ArchiveWriter& /*ar*/) const {}
+  virtual void load_state(ArchiveReader& /*ar*/) {}
+
   double tolerance = 1e-10;  // on ‖b − A·x‖ / ‖b‖
   int max_iterations = 1000;
   // Called after every iteration with (iteration, relative residual).
@@ -99,6 +108,9 @@ class Preconditioner {
   // passes over the vectors: one parallel pass fewer per iteration.
   virtual bool applies_by_rows() const { return false; }
   virtual void apply_rows(std::size_t /*begin*/, std::size_t /*end*/, const VecX& /*r*/, VecX& /*z*/) const {}
+  // As LinearSolver's: what it keeps from step to step (default: nothing).
+  virtual void save_state(ArchiveWriter& /*ar*/) const {}
+  virtual void load_state(ArchiveReader& /*ar*/) {}
 };
 
 double deterministic_dot(const VecX& a, const VecX& b);

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/archive.hpp"
 #include "core/error.hpp"
 #include "core/parallel.hpp"
 
@@ -49,6 +50,10 @@ int Multigrid::level_blocks(int level) const { return level == 0 ? fine_->rows()
 double Multigrid::smoother_weight(int level) const { return levels_[level].weight; }
 
 const BlockSparseMatrix& Multigrid::op(std::size_t level) const { return level == 0 ? *fine_ : levels_[level].owned; }
+
+void Multigrid::save_state(ArchiveWriter& ar) const { ar(levels_, pattern_rows_, pattern_cols_, aggregations_); }
+
+void Multigrid::load_state(ArchiveReader& ar) { ar(levels_, pattern_rows_, pattern_cols_, aggregations_); }
 
 void Multigrid::setup(const LinearOperator& op) {
   // The Galerkin products need the fine matrix's entries.

@@ -91,6 +91,10 @@ class Multigrid final : public Preconditioner {
   void set_block_centroids(std::span<const Vec2> centroids) override;
   void setup(const LinearOperator& a) override;
   void apply(const VecX& r, VecX& z) const override;
+  // The hierarchy, kept while the fine pattern holds (its aggregates and
+  // λmax estimates come from the matrix it was built on).
+  void save_state(ArchiveWriter& ar) const override;
+  void load_state(ArchiveReader& ar) override;
 
   // For tests and benchmarks.
   int levels() const { return static_cast<int>(levels_.size()); }
@@ -122,6 +126,12 @@ class Multigrid final : public Preconditioner {
     // PᵀAP: target coarse entry in traversal order (coarse row, its Pᵀ entries, their AP entries).
     std::vector<int> g_start, g_index;
     mutable VecX x, y, rhs, res;  // work vectors
+    template <class Archive>
+    void fields(Archive& ar) {
+      ar(owned, centroid, dinv, lambda, weight, aggregate, member_start, members, b, smooth, p_start, p_col, p_source,
+         p_val, pt_start, pt_row, pt_entry, ap_start, ap_col, ap_index, ap_offset, ap_val, g_start, g_index, x, y, rhs,
+         res);
+    }
   };
 
   const BlockSparseMatrix& op(std::size_t level) const;

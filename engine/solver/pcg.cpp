@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <tuple>
 
+#include "core/archive.hpp"
 #include "core/error.hpp"
 #include "core/parallel.hpp"
 #include "solver/preconditioner_choice.hpp"
@@ -56,6 +57,17 @@ void BlockJacobi::setup(const LinearOperator& a) {
   });
 }
 
+void BlockJacobi::save_state(ArchiveWriter& ar) const { ar(basis_, inverse_, std::uint64_t(revision_.size())); }
+
+void BlockJacobi::load_state(ArchiveReader& ar) {
+  std::uint64_t rows = 0;
+  ar(basis_, inverse_, rows);
+  if (basis_.size() != rows || inverse_.size() != rows)
+    throw Error(msg(ar.what(), " is damaged: its block-Jacobi preconditioner has ", basis_.size(), " blocks and ",
+                    inverse_.size(), " inverses for ", rows, " rows"));
+  revision_.assign(rows, 0);  // 0: no revision seen, every block is compared with its basis
+}
+
 void BlockJacobi::apply(const VecX& r, VecX& z) const {
   z.resize(r.size());
   parallel_for_each(
@@ -85,6 +97,18 @@ void PcgSolver::begin_step(const SolverSettings& settings, const StepSolveInfo& 
   pre_->configure(settings.pcg);
   pre_->set_block_centroids(info.block_centroids);
   patch_hops = info.local_resolves ? settings.pcg.patch_hops : 0;
+}
+
+void PcgSolver::save_state(ArchiveWriter& ar) const {
+  ar(kind_);
+  if (kind_) pre_->save_state(ar);
+}
+
+void PcgSolver::load_state(ArchiveReader& ar) {
+  ar(kind_);
+  if (!kind_) return;
+  pre_ = make_preconditioner(*kind_);
+  pre_->load_state(ar);
 }
 
 void PcgSolver::set_operator(const LinearOperator& a) {

@@ -21,6 +21,10 @@ class BlockJacobi final : public Preconditioner {
   void apply(const VecX& r, VecX& z) const override;
   bool applies_by_rows() const override { return true; }
   void apply_rows(std::size_t begin, std::size_t end, const VecX& r, VecX& z) const override;
+  // The kept inverses and the blocks they were made from (the operator's
+  // revision numbers are not kept: a restored one checks every block).
+  void save_state(ArchiveWriter& ar) const override;
+  void load_state(ArchiveReader& ar) override;
 
   // Relative change of a diagonal block below which its inverse is kept.
   double refresh_tolerance = 1e-4;
@@ -49,6 +53,9 @@ class PcgSolver final : public LinearSolver {
   const char* name() const override { return "pcg"; }
   Preconditioner& preconditioner() { return *pre_; }
   void set_preconditioner(std::unique_ptr<Preconditioner> pre) { pre_ = std::move(pre); }
+  // The preconditioner chosen last and its state.
+  void save_state(ArchiveWriter& ar) const override;
+  void load_state(ArchiveReader& ar) override;
   SolveReport solve(const VecX& b, VecX& x) override { return solve_from(b, x, {}); }
   // Keeps the last solve's residual on the rows not flagged (one mat-vec
   // fewer per open-close iteration after the first).

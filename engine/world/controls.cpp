@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <cstdlib>
 
+#include "core/archive.hpp"
 #include "core/error.hpp"
 
 namespace dda {
@@ -260,6 +261,59 @@ void validate_controls(const Controls& c) {
   // Runs every step: a message is built only when a check fails.
   for (const ControlSpec& s : kControls)
     if (const char* rule = s.violated(c)) throw Error(msg("controls: ", s.name, " ", rule, ", got ", s.value_text(c)));
+}
+
+namespace {
+// One control's value, either way.
+template <class Archive>
+void archive_value(Archive& ar, const ControlSpec& s, Controls& c) {
+  switch (s.type) {
+    case ControlType::Number:
+      ar(s.number(c));
+      break;
+    case ControlType::Integer:
+      ar(s.integer(c));
+      break;
+    case ControlType::Flag:
+      ar(s.flag(c));
+      break;
+    case ControlType::Vector:
+      ar(s.vector(c));
+      break;
+    case ControlType::Choice: {
+      int choice = s.get_choice(c);
+      ar(choice);
+      if constexpr (Archive::reading) s.set_choice(c, choice);
+      break;
+    }
+  }
+}
+}  // namespace
+
+void archive_controls(ArchiveWriter& ar, Controls& c) {
+  ar(std::uint64_t(std::size(kControls)));
+  for (const ControlSpec& s : kControls) {
+    ar(std::string(s.name), s.type);
+    archive_value(ar, s, c);
+  }
+}
+
+// By name: a control the file lacks keeps its default.
+void archive_controls(ArchiveReader& ar, Controls& c) {
+  std::uint64_t n = 0;
+  ar(n);
+  for (std::uint64_t k = 0; k < n; ++k) {
+    std::string name;
+    ControlType type{};
+    ar(name, type);
+    const ControlSpec* s = find_control(name);
+    if (!s || s->type != type)
+      throw Error(msg(ar.what(), " holds a control '", name.substr(0, 40),
+                      "' this dda does not know (damaged, or written by another build of dda)"));
+    archive_value(ar, *s, c);
+    if (const char* rule = s->violated(c))
+      throw Error(msg(ar.what(), " is damaged: its control ", s->name, " ", rule, ", got ", s->value_text(c)));
+  }
 }
 
 std::string controls_markdown_table() {

@@ -19,6 +19,14 @@
 
 namespace dda {
 
+class ArchiveWriter;
+class ArchiveReader;
+struct Controls;
+// A checkpoint's controls (core/archive.hpp): each by its name and type,
+// through the table below, so a control added there needs nothing here.
+void archive_controls(ArchiveWriter& ar, Controls& c);
+void archive_controls(ArchiveReader& ar, Controls& c);
+
 struct Controls {
   PlaneMode plane = PlaneMode::Stress;
   double g0 = 0;             // normal contact spring (N/m per unit thickness); 0 → 50 × largest E
@@ -51,6 +59,11 @@ struct Controls {
   SolverSettings solver;
   int cg_max_iterations = 0;  // 0 → 10 × unknowns + 100
   int threads = 0;            // 0 → every core
+
+  template <class Archive>
+  void fields(Archive& ar) {
+    archive_controls(ar, *this);
+  }
 };
 
 enum class ControlType { Number, Integer, Flag, Choice, Vector };

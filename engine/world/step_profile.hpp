@@ -57,6 +57,14 @@ struct StepStats {
   bool contacts_searched = false;     // a full contact search ran (else the list was reused)
   double max_displacement_ratio = 0;  // largest vertex displacement / (g2 bound)
   StepProfile profile;
+
+  // What a checkpoint holds (core/archive.hpp): the counts, which choose the
+  // next step's solve regime and preconditioner; not the timings.
+  template <class Archive>
+  void fields(Archive& ar) {
+    ar(dt, open_close_iterations, cg_iterations, patch_iterations, step_cuts, cut_reason, contacts, closed_contacts,
+       contacts_searched, max_displacement_ratio);
+  }
 };
 
 }  // namespace dda

@@ -31,6 +31,26 @@ class Stepper {
   const ContactOperator& system() const { return system_; }
   const VecX& rhs() const { return rhs_; }
 
+  // What a checkpoint holds of the Stepper (core/archive.hpp): what one step
+  // leaves for the next besides the WorldState. The rest is set up anew by
+  // every step (resolved controls, material constants, the solve regime, the
+  // contacts' linearisation) or is scratch; the system's rows follow the
+  // restored contact list.
+  template <class Archive>
+  void fields(Archive& ar, const WorldState& w) {
+    ar.section("contact detection"), ar(detection_);
+    ar.section("linear solver");
+    bool has_solver = solver_ != nullptr;
+    ar(has_solver);
+    if constexpr (Archive::reading) {
+      solver_ = has_solver ? make_linear_solver(w.controls.solver) : nullptr;
+      if (solver_) solver_->load_state(ar);
+      system_.set_contacts(static_cast<int>(w.blocks.count()), w.contacts);
+    } else if (solver_) {
+      solver_->save_state(ar);
+    }
+  }
+
  private:
   // The stages, in the order step() runs them.
   void check_new_model(WorldState& w);

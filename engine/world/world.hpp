@@ -149,6 +149,11 @@ class World {
   // determinism checks.
   std::uint64_t state_hash() const;
 
+  // Checkpoints (world/checkpoint.hpp): the whole state, the Stepper's
+  // included (core/archive.hpp).
+  template <class Archive>
+  void fields(Archive& ar);
+
  private:
   BlockId check(BlockId b) const;
 

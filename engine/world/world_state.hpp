@@ -31,6 +31,19 @@ struct WorldState {
   bool prepared = false;   // the first-step checks ran on these blocks
   StepStats last_stats;
 
+  // What a checkpoint holds (core/archive.hpp): all of it.
+  template <class Archive>
+  void fields(Archive& ar) {
+    ar.section("controls"), ar(controls);
+    ar.section("materials"), ar(rocks, joints);
+    ar.section("blocks"), ar(blocks);
+    ar.section("loads"), ar(loads);
+    ar.section("boundaries"), ar(boundaries);
+    ar.section("tracked points"), ar(tracked);
+    ar.section("contacts"), ar(contacts);
+    ar.section("clock"), ar(time, steps, dt, half_height, prepared, last_stats);
+  }
+
   // Half the y extent of the blocks as they are now.
   double measured_half_height() const;
   // Δt from the paper's Eqs. 1–3 with a = 0.05 and b = 0.177:

@@ -1,0 +1,58 @@
+#pragma once
+// Checkpoint and restart: a World's whole state in one file, so that a run
+// continues from it bit for bit as if it had never stopped (the same state
+// hash at every later step, for any thread count), or branches from it.
+//
+// What it holds: the WorldState (controls, materials, blocks with their
+// velocities, last displacements and stresses, loads and boundaries with
+// their histories and state, tracked points, contacts with their states and
+// shear references, the clock, the last step's figures) and what the Stepper
+// carries from one step to the next (the contact search's range and what the
+// list's staleness is measured from; the linear solver's preconditioner
+// choice and kept inverses). Each type lists its fields once, beside their
+// declarations (core/archive.hpp); the Stepper's list says what is left out
+// and why.
+//
+// The file: a 32-byte header, then the payload.
+//   magic "DDA-CKPT" | u32 format | u32 byte-order mark 0x01020304 |
+//   u64 payload bytes | u32 CRC-32 of the payload | u32 CRC-32 of the 28
+//   header bytes before it
+// A file of another format is refused (there is no conversion: a state that
+// lacks a field cannot continue exactly). Raise kCheckpointFormat with any
+// change of what is written. Writes are atomic (FILE.part, every write
+// checked, fsync, rename): a crash or a full disk leaves the previous file
+// whole.
+#include <cstdint>
+#include <filesystem>
+#include <string>
+#include <string_view>
+
+#include "world/world.hpp"
+
+namespace dda {
+
+// 1: the first format.
+inline constexpr std::uint32_t kCheckpointFormat = 1;
+
+// The World's state and `extra` (bytes its owner keeps beside it: the Lua
+// layer's loads and monitors), as a checkpoint file's bytes.
+std::string checkpoint_bytes(const World& world, std::string_view extra = {});
+
+struct Checkpoint {
+  World world;
+  std::string extra;
+};
+// Throws dda::Error naming `what` (e.g. "checkpoint 'run.ckpt'") and the
+// cause: not a checkpoint, another format, truncated, damaged.
+Checkpoint checkpoint_from_bytes(std::string_view bytes, const std::string& what);
+
+// The same through a file. Throws dda::Error naming the file and the cause.
+void save_checkpoint(const World& world, const std::filesystem::path& path, std::string_view extra = {});
+Checkpoint load_checkpoint(const std::filesystem::path& path);
+
+// Writes `bytes` to `path` atomically (path.part, every write checked,
+// fsync, rename, fsync of the folder). Throws dda::Error "cannot write
+// 'PATH': cause"; the old file, if any, is left as it was.
+void write_file_durably(const std::filesystem::path& path, std::string_view bytes);
+
+}  // namespace dda
