@@ -150,6 +150,7 @@ bool CholmodFactor::factorise(const BlockSparseMatrix& a) {
                             std::ranges::equal(a.columns(), columns_);
   if (!same_pattern) analyse(a);
   fill_values(a);
+  source_ = a;
   ready_ = false;
   if (!cholmod_factorize(a_, l_, common_)) throw Error("CHOLMOD could not factorise the system (out of memory?)");
   ++factorisations_;

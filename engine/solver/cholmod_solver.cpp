@@ -2,6 +2,7 @@
 
 #include <algorithm>
 
+#include "core/archive.hpp"
 #include "core/error.hpp"
 #include "solver/block_sparse_matrix.hpp"
 
@@ -12,6 +13,22 @@ CholmodSolver::CholmodSolver() : cg_(std::make_unique<CholmodPreconditioner>(fac
 void CholmodSolver::begin_step(const SolverSettings& settings, const StepSolveInfo& /*info*/) {
   refactor_iterations = settings.cholmod.refactor_iterations;
   factor_.ordering = settings.cholmod.ordering;
+}
+
+void CholmodSolver::save_state(ArchiveWriter& ar) const {
+  const bool ready = factor_.ready();
+  ar(ready);
+  if (ready) ar(factor_.ordering, factor_.factorised_matrix());
+}
+
+void CholmodSolver::load_state(ArchiveReader& ar) {
+  bool ready = false;
+  ar(ready);
+  if (!ready) return;
+  BlockSparseMatrix a;
+  ar(factor_.ordering, a);
+  if (!factor_.factorise(a))
+    throw Error(msg(ar.what(), " is damaged: the CHOLMOD factor it holds cannot be made again"));
 }
 
 void CholmodSolver::set_operator(const LinearOperator& a) {

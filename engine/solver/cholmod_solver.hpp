@@ -48,6 +48,9 @@ class CholmodSolver final : public LinearSolver {
     return solve_from(b, x, changed_rows);
   }
   const char* name() const override { return "cholmod"; }
+  // The factor in use, as the matrix it was made from (cholmod_factor.hpp).
+  void save_state(ArchiveWriter& ar) const override;
+  void load_state(ArchiveReader& ar) override;
   const CholmodFactor& factor() const { return factor_; }
 
   // CG iterations a solve may take with the factor it has before the system

@@ -1,8 +1,32 @@
 #include "solver/solver_choice.hpp"
 
+#include "core/archive.hpp"
+
 namespace dda {
 
 AutoSolver::AutoSolver() = default;
+
+void AutoSolver::save_state(ArchiveWriter& ar) const {
+  ar(on_direct_, solves_, factorisations_, iterations_, pcg_work_, pcg_solves_, pcg_iterations_, direct_steps_,
+     direct_work_, retry_in_, retry_wait_, long_pcg_steps_);
+  pcg_.save_state(ar);
+  const bool has_direct = direct_ != nullptr;
+  ar(has_direct);
+  if (has_direct) direct_->save_state(ar);
+}
+
+void AutoSolver::load_state(ArchiveReader& ar) {
+  ar(on_direct_, solves_, factorisations_, iterations_, pcg_work_, pcg_solves_, pcg_iterations_, direct_steps_,
+     direct_work_, retry_in_, retry_wait_, long_pcg_steps_);
+  pcg_.load_state(ar);
+  bool has_direct = false;
+  ar(has_direct);
+  direct_.reset();
+  if (has_direct) {
+    direct_ = std::make_unique<CholmodSolver>();
+    direct_->load_state(ar);
+  }
+}
 
 void AutoSolver::begin_step(const SolverSettings& settings, const StepSolveInfo& info) {
   const bool last_on_pcg = !on_direct_;

@@ -45,6 +45,10 @@ class AutoSolver final : public LinearSolver {
   SolveReport solve(const VecX& b, VecX& x) override;
   SolveReport resolve(const VecX& b, VecX& x, std::span<const char> changed_rows) override;
   const char* name() const override { return on_direct_ ? "cholmod" : "pcg"; }
+  // Checkpoints: the choice, the counts it is made from, and both solvers'
+  // kept state (PCG's preconditioner, the factor).
+  void save_state(ArchiveWriter& ar) const override;
+  void load_state(ArchiveReader& ar) override;
 
   static constexpr double kToDirect = 30;      // PCG iterations per solve
   static constexpr int kDirectMinBlocks = 64;  // smaller systems stay with PCG

@@ -146,6 +146,20 @@ TEST(Checkpoint, MultigridPreconditionedWallContinuesBitForBit) {
       6, 6);
 }
 
+TEST(Checkpoint, WallOnTheKeptFactorContinuesBitForBit) {
+  // The CHOLMOD factor is kept across steps: the checkpoint stores the matrix
+  // it was made from and the restored run factorises it again.
+  const auto wall = [] {
+    World w = test::brick_wall(10);
+    w.controls().solver.kind = SolverKind::Cholmod;
+    return w;
+  };
+  World w = wall();
+  for (int i = 0; i < 6; ++i) w.step();
+  EXPECT_STREQ(w.last_stats().solver, "cholmod");
+  expect_restart_exact(wall, 6, 6);
+}
+
 TEST(Checkpoint, FileRoundTripAndAtomicWrite) {
   const auto dir = std::filesystem::temp_directory_path() / "dda_checkpoint_test";
   std::filesystem::create_directories(dir);
