@@ -2,6 +2,7 @@
 // VBC, SBC and DHI, as implemented by the engine):
 //   edges:viscous_boundary{rock = r, vx = h, vy = h} → dda.Boundary
 //   edges:spring_boundary{p = ..., per_length = true} → dda.Boundary
+//   edges:free_field{base = boundary}             → dda.Boundary
 //   edges:target{displacement = h | velocity = h | acceleration = h, direction = {dx, dy}} → dda.Target
 //   m:target{at = {x, y}, block = b, direction = {dx, dy}, displacement = h | velocity = h | acceleration = h} →
 //   dda.Target
@@ -59,6 +60,23 @@ int es_viscous(lua_State* L) {
   if (o.has("vx") || o.has("vy"))
     s.model->world().set_incident_velocity(id, o.has("vx") ? engine_history(o, "vx") : History(),
                                            o.has("vy") ? engine_history(o, "vy") : History());
+  push_model_of(L, 1);
+  push_handle(L, -1, kBoundaryType, id);
+  return 1;
+}
+
+// edges:free_field{base = boundary} → Boundary: the edges (one vertical side)
+// coupled to a 1-D free-field column driven by the compliant base's wave.
+int es_free_field(lua_State* L) {
+  EdgesSelf s = self_edges(L, "edges:free_field");
+  const Options o(L, 2, "edges:free_field", {"base"});
+  if (!o.has("base")) fail("edges:free_field: option 'base' (the compliant base, a dda.Boundary) is required");
+  o.push("base");
+  Handle* base = check_handle(L, -1, kBoundaryType, "edges:free_field", "option 'base'");
+  check_same_model(base, s.model, "edges:free_field", "option 'base'");
+  const int base_id = base->id;
+  lua_pop(L, 1);
+  const int id = s.model->world().add_free_field(s.edges, base_id);
   push_model_of(L, 1);
   push_handle(L, -1, kBoundaryType, id);
   return 1;
@@ -200,6 +218,16 @@ int bd_force(lua_State* L) {
   return 2;
 }
 
+// boundary:free_field_velocity(y) → vx, vy of a free-field boundary's column at the node nearest height y
+int bd_free_field_velocity(lua_State* L) {
+  Handle* h = self_boundary(L, "boundary:free_field_velocity");
+  const Vec2 v = h->model->world().free_field_velocity(
+      h->id, check_number(L, 2, "boundary:free_field_velocity", "argument 1 (y)"));
+  lua_pushnumber(L, v.x());
+  lua_pushnumber(L, v.y());
+  return 2;
+}
+
 // boundary:point_forces() → {{fx, fy}, ...}, two points per edge in edge order
 int bd_point_forces(lua_State* L) {
   Handle* h = self_boundary(L, "boundary:point_forces");
@@ -295,6 +323,11 @@ void register_boundaries(lua_State* L) {
        "or of rock material r (the half-space below a compliant base). With vx, vy (histories of the incident "
        "wave's particle velocity, m/s, a number or {{t, v}, ...}) it is a compliant base: the wave comes in as the "
        "traction 2ρC·v_in (vertically incident S: vx on a horizontal base; P: vy). See docs/seismic.md."},
+      {"free_field", guarded<es_free_field>,
+       "edges:free_field{base = boundary} → Boundary. A free-field side: the edges (one vertical side of the model, "
+       "all facing the same way) are coupled to a 1-D column beside them, driven by the incident wave of `base` (a "
+       "compliant base: edges:viscous_boundary{vx = ...}), through dashpots ρC_P, ρC_S against the column's velocity "
+       "and the column's stresses. Call once per side. See docs/seismic.md."},
       {"spring_boundary", guarded<es_spring>,
        "edges:spring_boundary{p = stiffness, per_length = true} → Boundary (per_length: Eq. 22, spring p·l at each "
        "end; false: Eq. 21, p alone)"},
@@ -315,6 +348,9 @@ void register_boundaries(lua_State* L) {
        "boundary:force() → fx, fy: the total force its points exerted in the last step (N per unit thickness)"},
       {"point_forces", guarded<bd_point_forces>,
        "boundary:point_forces() → {{fx, fy}, ...}, two points per edge in edge order"},
+      {"free_field_velocity", guarded<bd_free_field_velocity>,
+       "boundary:free_field_velocity(y) → vx, vy: a free-field boundary's column at the node nearest height y "
+       "(after the last step)"},
       {}};
   static const luaL_Reg bd_meta[] = {{"__tostring", bd_tostring}, {nullptr, nullptr}};
   define_type(L, kBoundaryType, bd_methods, bd_meta);

@@ -1,5 +1,6 @@
 #include "boundary/boundaries.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 #include "block/displacement.hpp"
@@ -97,6 +98,10 @@ int Boundaries::add_viscous_boundary(const Blocks& blocks, const std::vector<Roc
     for (const Vec2& p : {a, b}) boundary_points_.push_back({id, e.block, p, p, c, 0.0, Vec2::Zero()});
   }
   add_boundary(BoundaryKind::Viscous, first);
+  const RockMaterial& rock = medium ? *medium : rocks[blocks.material[edges.front().block]];
+  boundaries_.back().zs = rock.density * s_wave_speed(rock);
+  const double g = rock.youngs / (2 * (1 + rock.poisson)), k = rock.youngs / (3 * (1 - 2 * rock.poisson));
+  boundaries_.back().zp = std::sqrt((k + 4 * g / 3) * rock.density);
   return id;
 }
 
@@ -125,6 +130,86 @@ void Boundaries::set_incident_velocity(int id, History vx, History vy) {
   b.incident = true;
   b.incident_vx = std::move(vx);
   b.incident_vy = std::move(vy);
+}
+
+int Boundaries::add_free_field(const Blocks& blocks, const std::vector<RockMaterial>& rocks, PlaneMode plane,
+                               const std::vector<EdgeRef>& side, int base) {
+  const int id = static_cast<int>(boundaries_.size());
+  const std::string what = msg("free-field boundary ", id);
+  check_edges(blocks, side, what);
+  if (base < 0 || base >= id || boundaries_[base].kind != BoundaryKind::Viscous || !boundaries_[base].incident)
+    throw Error(msg(what, ": base ", base,
+                    " must be a compliant base (a viscous boundary with an incident wave) made before it"));
+  // The side's edges, bottom to top; each vertical, one outward normal.
+  struct SideEdge {
+    EdgeRef edge;
+    Vec2 low, high;
+  };
+  std::vector<SideEdge> edges;
+  double normal_x = 0;
+  for (const EdgeRef& e : side) {
+    const auto v = blocks.outline(e.block);
+    const Vec2 a = v[e.edge], b = v[(e.edge + 1) % v.size()];
+    const double l = (b - a).norm();
+    if (std::abs(b.x() - a.x()) > 1e-6 * l)
+      throw Error(msg(what, ": edge ", e.edge, " of block ", e.block, " is not vertical (a free-field side must be)"));
+    const double nx = b.y() > a.y() ? 1.0 : -1.0;  // outward normal (t.y, −t.x) of a counter-clockwise outline
+    if (normal_x != 0 && nx != normal_x)
+      throw Error(msg(what, ": the edges face both ways; give the left and the right side as two free fields"));
+    normal_x = nx;
+    edges.push_back({e, a.y() < b.y() ? a : b, a.y() < b.y() ? b : a});
+  }
+  std::sort(edges.begin(), edges.end(), [](const SideEdge& p, const SideEdge& q) { return p.low.y() < q.low.y(); });
+  std::vector<FreeFieldColumn::Segment> segments;
+  for (std::size_t i = 0; i < edges.size(); ++i) {
+    const double l = edges[i].high.y() - edges[i].low.y();
+    if (i > 0 && std::abs(edges[i].low.y() - edges[i - 1].high.y()) > 1e-6 * l)
+      throw Error(msg(what, ": the side has a gap or an overlap at y = ", edges[i - 1].high.y(),
+                      " (give every edge of the side, once)"));
+    const RockMaterial& rock = rocks[blocks.material[edges[i].edge.block]];
+    const Mat3 e = elastic_matrix(rock, plane);
+    segments.push_back({l, rock.density, e(2, 2), e(0, 1)});
+  }
+  const Boundary& b = boundaries_[base];
+  columns_.emplace_back(edges.front().low.y(), std::move(segments), b.zs, b.zp, b.incident_vx, b.incident_vy);
+  const int first = static_cast<int>(boundary_points_.size());
+  for (std::size_t i = 0; i < edges.size(); ++i) {
+    const EdgeRef& e = edges[i].edge;
+    const RockMaterial& rock = rocks[blocks.material[e.block]];
+    const double l = edges[i].high.y() - edges[i].low.y();
+    const double g = rock.youngs / (2 * (1 + rock.poisson)), k = rock.youngs / (3 * (1 - 2 * rock.poisson));
+    const double cp = std::sqrt((k + 4 * g / 3) / rock.density), cs = std::sqrt(g / rock.density);
+    Eigen::Matrix2d c = Eigen::Matrix2d::Zero();
+    c(0, 0) = 0.5 * l * rock.density * cp;
+    c(1, 1) = 0.5 * l * rock.density * cs;
+    for (int end = 0; end < 2; ++end) {
+      BoundaryPoint p{id, e.block, end == 0 ? edges[i].low : edges[i].high, {}, c, 0.0, Vec2::Zero()};
+      p.origin = p.point;
+      p.node = static_cast<int>(i) + end;
+      p.segment = static_cast<int>(i);
+      p.half_length = 0.5 * l;
+      p.normal_x = normal_x;
+      boundary_points_.push_back(p);
+    }
+  }
+  add_boundary(BoundaryKind::FreeField, first);
+  boundaries_.back().column = static_cast<int>(columns_.size()) - 1;
+  return id;
+}
+
+Vec2 Boundaries::free_field_velocity(int id, double y) const {
+  if (id < 0 || id >= static_cast<int>(boundaries_.size()) || boundaries_[id].kind != BoundaryKind::FreeField)
+    throw Error(msg("no free-field boundary ", id));
+  const FreeFieldColumn& column = columns_[boundaries_[id].column];
+  const int node = column.node_at(y);
+  return Vec2(column.vx(node), column.vy(node));
+}
+
+Vec2 Boundaries::free_field_load(const BoundaryPoint& p) const {
+  const FreeFieldColumn& column = columns_[boundaries_[p.boundary].column];
+  const Vec2 v_ff(column.vx(p.node), column.vy(p.node));
+  const Vec2 traction = p.normal_x * Vec2(column.lateral_stress(p.segment), column.shear_stress(p.segment));
+  return p.c * v_ff + p.half_length * traction;
 }
 
 void Boundaries::add_boundary(BoundaryKind kind, int first) {
@@ -178,13 +263,15 @@ void Boundaries::add_terms(double t_end, double stiff_spring, const Blocks& bloc
   // wave adds 2·c·v_in(t_end), a load.
   for (Boundary& b : boundaries_)
     if (b.incident) b.incident_velocity = Vec2(b.incident_vx.value(t_end), b.incident_vy.value(t_end));
+  for (FreeFieldColumn& column : columns_) column.advance(t_end, scheme);
   for (const BoundaryPoint& p : boundary_points_) {
     const Mat26 t = displacement_matrix(p.point, blocks.centroid[p.block]);
     const Boundary& boundary = boundaries_[p.boundary];
-    if (boundary.kind == BoundaryKind::Viscous) {
+    if (boundary.kind != BoundaryKind::Spring) {
       terms.k[p.block] = Symmetric6(terms.k[p.block].full() + scheme.velocity_factor() * t.transpose() * p.c * t);
       terms.f[p.block] += t.transpose() * (p.c * (t * scheme.carried_velocity(blocks.velocity[p.block])));
       if (boundary.incident) terms.f[p.block] += t.transpose() * (2 * (p.c * boundary.incident_velocity));
+      if (boundary.kind == BoundaryKind::FreeField) terms.f[p.block] += t.transpose() * free_field_load(p);
     } else {
       // SBC: the fixed-point sub-matrix without the fixed point's residual
       // term (the paper's §3.3.1): the spring acts on this step's
@@ -200,18 +287,21 @@ void Boundaries::update(const Blocks& blocks, const VecX& d_all, const TimeSchem
   move_material_points(fixed_points_, blocks, d_all);
   for (DisplacementTarget& p : targets_) p.point += moved(p.block, p.point);
   for (BoundaryPoint& p : boundary_points_) {
-    // Force at the end of the step: −c·v1 (dashpot) or −k·Δu (spring).
+    // Force at the end of the step: c·(2·v_in − v1) (dashpot, v_in = 0
+    // without an incident wave), plus the free field's load, or −k·Δu (spring).
     const Vec2 du = moved(p.block, p.point);
-    if (boundaries_[p.boundary].kind == BoundaryKind::Viscous) {
+    const Boundary& b = boundaries_[p.boundary];
+    if (b.kind != BoundaryKind::Spring) {
       const Mat26 t = displacement_matrix(p.point, blocks.centroid[p.block]);
-      const Boundary& b = boundaries_[p.boundary];
       p.force = p.c * ((b.incident ? Vec2(2 * b.incident_velocity) : Vec2(Vec2::Zero())) -
                        t * scheme.end_velocity(d_of(p.block), blocks.velocity[p.block]));
+      if (b.kind == BoundaryKind::FreeField) p.force += free_field_load(p);
     } else {
       p.force = -p.k * du;
     }
     p.point += du;
   }
+  for (FreeFieldColumn& column : columns_) column.commit();
 }
 
 }  // namespace dda

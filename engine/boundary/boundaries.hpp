@@ -9,12 +9,13 @@
 #include "assembly/block_terms.hpp"
 #include "block/blocks.hpp"
 #include "block/time_scheme.hpp"
+#include "boundary/free_field.hpp"
 #include "core/material.hpp"
 #include "loading/history.hpp"
 
 namespace dda {
 
-enum class BoundaryKind { Viscous, Spring };
+enum class BoundaryKind { Viscous, Spring, FreeField };
 
 class Boundaries {
  public:
@@ -45,6 +46,16 @@ class Boundaries {
   // point's force becomes C·(2·v_in − v), i.e. traction 2ρC·v_in less the
   // dashpot's (UDEC's input; what leaves through the boundary is absorbed).
   void set_incident_velocity(int id, History vx, History vy);
+  // Free-field side (free_field.hpp): a vertical side of the model (edges
+  // with one outward normal, ±x) coupled to a 1-D column beside it, driven
+  // by the incident wave of the compliant base `base` (a viscous boundary
+  // with set_incident_velocity). At each end of each edge: the viscous
+  // boundary's dashpots against the column's velocity, C·(v_ff − v), plus
+  // the column's stress on the side, (σxx, τxy)·n_x over half the edge.
+  int add_free_field(const Blocks& blocks, const std::vector<RockMaterial>& rocks, PlaneMode plane,
+                     const std::vector<EdgeRef>& side, int base);
+  // The column's velocity at the node nearest height y (after the last step).
+  Vec2 free_field_velocity(int id, double y) const;
   int add_spring_boundary(const Blocks& blocks, const std::vector<EdgeRef>& edges, double p, bool per_length);
   std::vector<Vec2> boundary_point_forces(int id) const;
 
@@ -60,7 +71,7 @@ class Boundaries {
   // What a checkpoint holds (core/archive.hpp): every point with its state.
   template <class Archive>
   void fields(Archive& ar) {
-    ar(fixed_points_, targets_, boundary_points_, boundaries_);
+    ar(fixed_points_, targets_, boundary_points_, boundaries_, columns_);
   }
 
  private:
@@ -87,9 +98,13 @@ class Boundaries {
     Eigen::Matrix2d c;
     double k;
     Vec2 force;
+    // Free-field points: the column node at this point and the segment of its edge.
+    int node = -1, segment = -1;
+    double half_length = 0;
+    double normal_x = 0;  // the side's outward normal, ±1 along x
     template <class Archive>
     void fields(Archive& ar) {
-      ar(boundary, block, point, origin, c, k, force);
+      ar(boundary, block, point, origin, c, k, force, node, segment, half_length, normal_x);
     }
   };
   struct Boundary {
@@ -98,11 +113,15 @@ class Boundaries {
     bool incident = false;  // a viscous boundary with an incident wave
     History incident_vx, incident_vy;
     Vec2 incident_velocity = Vec2::Zero();  // at the end of the last step assembled
+    double zs = 0, zp = 0;                  // viscous: impedances ρC_S, ρC_P of its medium
+    int column = -1;                        // free field: its column in columns_
     template <class Archive>
     void fields(Archive& ar) {
-      ar(kind, first, count, incident, incident_vx, incident_vy, incident_velocity);
+      ar(kind, first, count, incident, incident_vx, incident_vy, incident_velocity, zs, zp, column);
     }
   };
+  // The force of a free-field point at the trial state: C·(v_ff − v1) + traction.
+  Vec2 free_field_load(const BoundaryPoint& p) const;
   void add_boundary(BoundaryKind kind, int first);  // of the points from `first` on
   const DisplacementTarget& target(int id) const;
   DisplacementTarget& target(int id) { return const_cast<DisplacementTarget&>(std::as_const(*this).target(id)); }
@@ -111,6 +130,7 @@ class Boundaries {
   std::vector<DisplacementTarget> targets_;
   std::vector<BoundaryPoint> boundary_points_;
   std::vector<Boundary> boundaries_;
+  std::vector<FreeFieldColumn> columns_;
 };
 
 }  // namespace dda

@@ -177,6 +177,12 @@ void World::set_incident_velocity(int boundary, History vx, History vy) {
   s_.boundaries.set_incident_velocity(boundary, std::move(vx), std::move(vy));
 }
 
+int World::add_free_field(const std::vector<EdgeRef>& side, int base) {
+  return s_.boundaries.add_free_field(s_.blocks, s_.rocks, s_.controls.plane, side, base);
+}
+
+Vec2 World::free_field_velocity(int boundary, double y) const { return s_.boundaries.free_field_velocity(boundary, y); }
+
 int World::add_spring_boundary(const std::vector<EdgeRef>& edges, double p, bool per_length) {
   return s_.boundaries.add_spring_boundary(s_.blocks, edges, p, per_length);
 }

@@ -96,6 +96,12 @@ class World {
   // (vertically incident S: vx on a horizontal base; P: vy). See
   // docs/seismic.md.
   void set_incident_velocity(int boundary, History vx, History vy);
+  // Free-field side (boundary/free_field.hpp): a vertical side of the model
+  // coupled through dashpots and the column's stresses to a 1-D column beside
+  // it, driven by the compliant base `base`'s incident wave. One call per
+  // side; the column takes the plane mode of the controls now.
+  int add_free_field(const std::vector<EdgeRef>& side, int base);
+  Vec2 free_field_velocity(int boundary, double y) const;  // the column's, at the node nearest y
   // SBC (Eq. 22): at each end of each edge a spring p·l·TᵀT (Eq. 21's p
   // without the edge length when per_length is false). As the paper says, it
   // is the fixed-point sub-matrix without the fixed point's residual term: it
