@@ -30,12 +30,21 @@ class Loads {
   // The accepted step's displacement d moves the load points with their
   // blocks (before the blocks themselves move).
   void move_points(const Blocks& blocks, const VecX& d);
+  // The work (J/m) of the point loads and of the pressures on the accepted
+  // step displacement d (before move_points): trapezoidal between the forces
+  // the step before applied and those this step applied (those at t_end).
+  struct Work {
+    double point = 0, pressure = 0;
+  };
+  Work step_work(const Blocks& blocks, const VecX& d) const;
 
  private:
   struct PointLoad {
     BlockId block;
     Vec2 point;
     Vec2 force;
+    Vec2 force_before = Vec2::Zero();  // applied in the step before (for its work)
+    bool applied = false;              // by a step yet
   };
   struct PointLoadHistory {
     int load;
@@ -47,6 +56,8 @@ class Loads {
     double pressure;
     History history;
     bool from_history;
+    double pressure_before = 0;  // applied in the step before (for its work)
+    bool applied = false;        // by a step yet
   };
   std::vector<PointLoad> point_loads_;
   std::vector<PointLoadHistory> point_load_histories_;

@@ -3,7 +3,8 @@
 --
 -- Models:  the bars of bars.lua (Models 1-6), rock rho = 2000 kg/m^3, E = 50 GPa,
 --          nu = 0.25, plane stress (1-D bar speed sqrt(E/rho) = 5000 m/s), controls
---          g1 = 2e-6 s, gg = 1, g2 = 0.005, g0 given in multiples of E.
+--          g1 = 2e-6 s, gg = 1, g2 = 0.005, g0 given in multiples of E, Shi's time
+--          integrator (the paper's: integrator = "shi" pinned, whatever the default).
 --          Load: a pressure on the left-end edges (SHI, positive = compression
 --          pushing into the bar), amplitude A (5 MPa), frequency f:
 --            "half": p(t) = A sin(2 pi f t) for t < T/2, then 0 (compression only);
@@ -53,12 +54,14 @@ end
 
 -- One bar run. opts: tag (monitor/CSV name), model (1), g0 (x E), load ("half"),
 -- freq (1000), amp (5e6), phi (40), c (8e6), tension (8e6), right ("fixed"),
--- p (x E), per_length (true), t_end (s), end_monitor (false).
+-- p (x E), per_length (true), t_end (s), end_monitor (false), integrator ("shi"),
+-- dt (g1, 2e-6 s), at (the monitor point, bars.centre).
 function wave.run(o)
   local model = o.model or 1
   local freq, amp = o.freq or 1000, o.amp or wave.A
   local g0 = (o.g0 or 1) * E
-  local m = dda.model{ plane = "stress", g0 = g0, g1 = 2e-6, g2 = 0.005, gg = 1 }
+  local m = dda.model{ plane = "stress", g0 = g0, g1 = o.dt or 2e-6, g2 = 0.005, gg = 1,
+                       integrator = o.integrator or "shi" }
   local rock = m:rock(bars.rock)
   local joint = m:joint{ friction = o.phi or 40, cohesion = o.c or 8e6, tension = o.tension or 8e6 }
   local blocks = bars.build(m, model, rock, joint)
@@ -93,7 +96,7 @@ function wave.run(o)
       end
     end
   elseif right ~= "free" then error("wave.run: unknown right end " .. tostring(right)) end
-  local centre = m:monitor{ name = o.tag, at = bars.centre, fields = {"sxx", "vx"} }
+  local centre = m:monitor{ name = o.tag, at = o.at or bars.centre, fields = {"sxx", "vx"} }
   local endmon = nil
   if o.end_monitor then
     endmon = m:monitor{ name = o.tag .. "_end", at = {19.9, 0.5}, fields = {"ux"} }
