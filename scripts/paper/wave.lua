@@ -32,6 +32,8 @@
 --   absorbed share      1 - |reflected with the boundary| / |reflected with Fixed|;
 --   T/dt                the wave period over the mean step of the run.
 -- Use:     local wave = require "wave"; local r = wave.run{ tag = "fig3_g0_20", g0 = 20 }
+-- Returns: r with the centre's series, the run's figures and its energy budget
+--          (r.energy = m:energy() at the end).
 -- Writes:  <out>/<tag>.csv (step, time, sxx, vx[, ux]) per run; fig:finish() writes
 --          <out>/<figure>_numbers.csv (figure,quantity,paper,ours,unit) and the plots.
 
@@ -108,7 +110,7 @@ function wave.run(o)
     dt = m:time() / math.max(m:steps(), 1), T = 1 / freq, dur = dur,
     t_comp = t_comp, t_tens = t_tens, cuts = m:totals().step_cuts,
     t = centre:times(), sxx = centre:series("sxx"), vx = centre:series("vx"),
-    t_split = 20 / c_guess + dur / 2, file = centre:file(), monitor = centre,
+    t_split = 20 / c_guess + dur / 2, file = centre:file(), monitor = centre, energy = m:energy(),
   }
   if endmon then r.ux_end = endmon:series("ux"); r.t_end_series = endmon:times() end
   r.T_over_dt = r.T / r.dt
