@@ -25,23 +25,35 @@ struct FieldName {
 constexpr FieldName kFields[] = {{Field::Sxx, "sxx"}, {Field::Syy, "syy"}, {Field::Txy, "txy"},
                                  {Field::Vx, "vx"},   {Field::Vy, "vy"},   {Field::Ux, "ux"},
                                  {Field::Uy, "uy"},   {Field::X, "x"},     {Field::Y, "y"}};
+
+constexpr int kEnergyFieldCount = static_cast<int>(std::size(kEnergyTerms));
+std::string energy_field_name(int k) { return std::string("energy_") + kEnergyTerms[k].name; }
 }  // namespace
 
 const char* field_name(Field f) {
   for (const auto& n : kFields)
     if (n.field == f) return n.name;
-  return "?";
+  static const std::vector<std::string> energy = [] {
+    std::vector<std::string> names;
+    for (int k = 0; k < kEnergyFieldCount; ++k) names.push_back(energy_field_name(k));
+    return names;
+  }();
+  const int k = static_cast<int>(f) - static_cast<int>(Field::EnergyFirst);
+  return k >= 0 && k < kEnergyFieldCount ? energy[k].c_str() : "?";
 }
 
 std::optional<Field> parse_field(std::string_view name) {
   for (const auto& n : kFields)
     if (name == n.name) return n.field;
+  for (int k = 0; k < kEnergyFieldCount; ++k)
+    if (name == energy_field_name(k)) return static_cast<Field>(static_cast<int>(Field::EnergyFirst) + k);
   return std::nullopt;
 }
 
 std::string field_list() {
   std::string s;
   for (const auto& n : kFields) s += s.empty() ? n.name : std::string(", ") + n.name;
+  for (int k = 0; k < kEnergyFieldCount; ++k) s += ", " + energy_field_name(k);
   return s;
 }
 
@@ -274,8 +286,9 @@ double ScriptModel::field_value(const Monitor& m, Field f) const {
       return w.tracked_position(m.tracked).x();
     case Field::Y:
       return w.tracked_position(m.tracked).y();
+    default:
+      return w.energy().total.*kEnergyTerms[static_cast<int>(f) - static_cast<int>(Field::EnergyFirst)].term;
   }
-  return 0;
 }
 
 void ScriptModel::record(Monitor& m) {

@@ -25,7 +25,10 @@
 namespace dda::script {
 
 // ---- Monitors -------------------------------------------------------------
-enum class Field : std::uint8_t { Sxx, Syy, Txy, Vx, Vy, Ux, Uy, X, Y };
+// Point fields, then the energy budget's terms since the first step (the
+// model's, whatever the point: "energy_kinetic" ... "energy_residual", in
+// kEnergyTerms' order from EnergyFirst).
+enum class Field : std::uint8_t { Sxx, Syy, Txy, Vx, Vy, Ux, Uy, X, Y, EnergyFirst };
 const char* field_name(Field f);
 std::optional<Field> parse_field(std::string_view name);
 std::string field_list();  // "sxx, syy, txy, vx, vy, ux, uy, x, y"

@@ -24,17 +24,21 @@ int m_rock(lua_State* L) {
   return 1;
 }
 
-// m:joint{friction = φ (degrees), cohesion = c (Pa), tension = σt (Pa)} → JointMaterial
+// m:joint{friction = φ (degrees), cohesion = c (Pa), tension = σt (Pa),
+//         kn = normal stiffness (Pa/m), ks = shear stiffness (Pa/m)} → JointMaterial
 int m_joint(lua_State* L) {
   ScriptModel& m = check_model(L, 1, "m:joint");
   check_not_busy(m, "m:joint");
-  const Options o(L, 2, "m:joint", {"friction", "cohesion", "tension"});
+  const Options o(L, 2, "m:joint", {"friction", "cohesion", "tension", "kn", "ks"});
   JointMaterial j;
   j.friction_deg = o.number("friction");
   if (j.friction_deg < 0 || j.friction_deg >= 90)
     fail("m:joint: option 'friction' (degrees) must lie in [0, 90), got ", j.friction_deg);
   j.cohesion = o.non_negative("cohesion", 0);
   j.tensile_strength = o.non_negative("tension", 0);
+  j.normal_stiffness = o.non_negative("kn", 0);
+  j.shear_stiffness = o.non_negative("ks", 0);
+  validate(j, m.world().joint_material_count());
   const int id = m.world().add_joint_material(j);
   push_joint(L, 1, id);
   return 1;
@@ -108,6 +112,10 @@ int joint_index(lua_State* L) {
     lua_pushnumber(L, j.cohesion);
   else if (!std::strcmp(k, "tension"))
     lua_pushnumber(L, j.tensile_strength);
+  else if (!std::strcmp(k, "kn"))
+    lua_pushnumber(L, j.normal_stiffness);
+  else if (!std::strcmp(k, "ks"))
+    lua_pushnumber(L, j.shear_stiffness);
   else if (!std::strcmp(k, "id"))
     lua_pushinteger(L, id);
   else
@@ -128,8 +136,12 @@ int joint_newindex(lua_State* L) {
     j.cohesion = check_number(L, 3, call, "the value");
   else if (k == "tension")
     j.tensile_strength = check_number(L, 3, call, "the value");
+  else if (k == "kn")
+    j.normal_stiffness = check_number(L, 3, call, "the value");
+  else if (k == "ks")
+    j.shear_stiffness = check_number(L, 3, call, "the value");
   else
-    fail("joint: unknown field '", k, "' (fields: friction, cohesion, tension)");
+    fail("joint: unknown field '", k, "' (fields: friction, cohesion, tension, kn, ks)");
   validate(j, id);
   h->model->world().joint_material(id) = j;
   return 0;

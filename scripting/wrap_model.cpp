@@ -357,6 +357,18 @@ int m_totals(lua_State* L) {
   set_number_field(L, "steps_per_second", t.wall_seconds > 0 ? t.steps / t.wall_seconds : 0);
   return 1;
 }
+// m:energy() → {kinetic, strain, contact, gravity, ..., residual, step = {...}}
+void push_energy_terms(lua_State* L, const EnergyTerms& e) {
+  lua_createtable(L, 0, static_cast<int>(std::size(kEnergyTerms)));
+  for (const EnergyTermName& t : kEnergyTerms) set_number_field(L, t.name, e.*t.term);
+}
+int m_energy(lua_State* L) {
+  const EnergyBudget& e = check_model(L, 1, "m:energy").world().energy();
+  push_energy_terms(L, e.total);
+  push_energy_terms(L, e.last_step);
+  lua_setfield(L, -2, "step");
+  return 1;
+}
 int m_hash(lua_State* L) {
   char buf[32];
   std::snprintf(buf, sizeof buf, "%016" PRIx64,
@@ -497,6 +509,10 @@ void register_model(lua_State* L) {
       {"stats", guarded<m_stats>,
        "m:stats() → the last step's figures {dt, open_close_iterations, cg_iterations, step_cuts, contacts, t_solve, "
        "...}"},
+      {"energy", guarded<m_energy>,
+       "m:energy() → the energy budget (J/m): {kinetic, strain, contact (held now), gravity, point_loads, "
+       "pressure, targets, fixed_points, viscous, spring_boundaries, friction (work on the blocks since the first "
+       "step), residual (held change − work), step = {the same for the last step}}"},
       {"totals", guarded<m_totals>,
        "m:totals() → {steps, step_cuts, open_close_iterations, cg_iterations, wall_seconds, steps_per_second}"},
       {"hash", guarded<m_hash>, "m:hash() → a hex hash of the whole state (the same for any thread count)"},

@@ -1,9 +1,24 @@
 #include "assembly/block_terms.hpp"
 
+#include <Eigen/Cholesky>
+#include <cmath>
+
 #include "block/displacement.hpp"
 #include "core/parallel.hpp"
 
 namespace dda {
+
+namespace {
+
+// The block's initial stress on its strain terms (εx, εy, γxy) and its body
+// force: the forces of its own that do not depend on the step.
+void add_stress_and_body_force(const Blocks& blocks, std::size_t b, const Vec2& gravity, Vec6& f) {
+  f.tail<3>() -= blocks.area[b] * blocks.stress[b];
+  f[0] += blocks.mass[b] * gravity.x();
+  f[1] += blocks.mass[b] * gravity.y();
+}
+
+}  // namespace
 
 void assemble_block_terms(const Blocks& blocks, std::span<const Mat3> elastic, const Vec2& gravity,
                           const TimeScheme& scheme, BlockTerms& terms) {
@@ -14,19 +29,29 @@ void assemble_block_terms(const Blocks& blocks, std::span<const Mat3> elastic, c
     Mat6 k = Mat6::Zero();
     Vec6 f = Vec6::Zero();
     const double area = blocks.area[b];
-    // Elasticity and initial stress act on the strain terms (εx, εy, γxy).
+    // Elasticity acts on the strain terms (εx, εy, γxy).
     k.bottomRightCorner<3, 3>() += area * elastic[blocks.material[b]];
-    f.tail<3>() -= area * blocks.stress[b];
     // Inertia: the time scheme's terms with ∫TᵀT dA.
-    const double rho = blocks.mass[b] / area;
-    const Mat6 tt = integrated_tt(area, blocks.sxx[b], blocks.syy[b], blocks.sxy[b]);
-    scheme.add_inertia(rho, tt, blocks.velocity[b], k, f);
-    // Body force.
-    f[0] += blocks.mass[b] * gravity.x();
-    f[1] += blocks.mass[b] * gravity.y();
+    scheme.add_inertia(blocks.mass[b] / area, block_tt(blocks, b), blocks.scheme_state(b), k, f);
+    add_stress_and_body_force(blocks, b, gravity, f);
     terms.k[b] = Symmetric6(k);
     terms.f[b] = f;
   });
+}
+
+Mat6 block_tt(const Blocks& blocks, std::size_t b) {
+  return integrated_tt(blocks.area[b], blocks.sxx[b], blocks.syy[b], blocks.sxy[b]);
+}
+
+void start_time_scheme_state(Blocks& blocks, const Vec2& gravity, const BlockTerms& loads) {
+  for (std::size_t b = 0; b < blocks.count(); ++b) {
+    if (!std::isnan(blocks.acceleration[b][0])) continue;
+    Vec6 f = loads.f[b];
+    add_stress_and_body_force(blocks, b, gravity, f);
+    const Mat6 mass = (blocks.mass[b] / blocks.area[b]) * block_tt(blocks, b);
+    blocks.out_of_balance[b] = f;
+    blocks.acceleration[b] = mass.ldlt().solve(f);
+  }
 }
 
 }  // namespace dda

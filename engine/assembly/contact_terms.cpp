@@ -10,7 +10,6 @@ void assemble_contact_rows(std::span<const Contact> contacts, const ContactLinea
                            const OpenCloseState& open_close, const ContactParameters& p, const BlockTerms& own,
                            bool all_rows, ContactOperator& system, VecX& rhs, std::vector<char>& row_reassembled) {
   const int n = system.rows();
-  const double kn_full = p.g0, ks_full = p.shear_ratio * p.g0;
   rhs.resize(6 * n);
   // The springs each contact acts with in this solve: normal on a closed
   // contact, shear too on a locked one.
@@ -19,8 +18,9 @@ void assemble_contact_rows(std::span<const Contact> contacts, const ContactLinea
       [&](std::size_t i) {
         const Contact& c = contacts[i];
         ContactOperator::Springs& k = system.springs(static_cast<int>(i));
-        k.kn = c.state == ContactState::Open ? 0.0 : c.scale * kn_full;
-        k.ks = c.state == ContactState::Locked ? c.scale * ks_full : 0.0;
+        const ContactParameters::Springs full = p.springs(c);
+        k.kn = c.state == ContactState::Open ? 0.0 : c.scale * full.kn;
+        k.ks = c.state == ContactState::Locked ? c.scale * full.ks : 0.0;
       },
       1024);
   // Each block row is gathered by one task, adding its contacts in contact

@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "block/time_scheme.hpp"
 #include "core/types.hpp"
 #include "geometry/block_polygons.hpp"
 #include "geometry/edge.hpp"
@@ -25,6 +26,13 @@ struct Blocks {
   std::vector<Vec3> stress;             // (σxx, σyy, τxy), tension positive
   std::vector<Vec6> velocity;           // rates of (u0, v0, r0, εx, εy, γxy)
   std::vector<Vec6> last_displacement;  // the previous step's solution (the warm start)
+  // The time integrator's state besides the velocity (block/time_scheme.hpp),
+  // at the end of the last step, written in Update only (a checkpoint saves
+  // these with the velocity): the acceleration and the generalised force
+  // not balanced by springs and stresses. NaN until the first step derives
+  // them from the block's loads (start_time_scheme_state, block_terms.hpp).
+  std::vector<Vec6> acceleration;
+  std::vector<Vec6> out_of_balance;
   // Cold: parallel to vertices, and per block.
   std::vector<Vec2> initial_vertices;  // where each vertex started
   std::vector<int> edge_joint;         // joint material of edge k → k + 1
@@ -34,8 +42,8 @@ struct Blocks {
   // What a checkpoint holds (core/archive.hpp): every array.
   template <class Archive>
   void fields(Archive& ar) {
-    ar(vertex_start, vertices, centroid, area, sxx, syy, sxy, mass, material, stress, velocity, last_displacement,
-       initial_vertices, edge_joint, edge_tag, initial_centroid);
+    ar(vertex_start, vertices, centroid, area, sxx, syy, sxy, mass, material, stress, velocity, acceleration,
+       out_of_balance, last_displacement, initial_vertices, edge_joint, edge_tag, initial_centroid);
   }
 
   std::size_t count() const { return vertex_start.empty() ? 0 : vertex_start.size() - 1; }
@@ -44,6 +52,8 @@ struct Blocks {
     return std::span<const Vec2>(vertices).subspan(vertex_start[b], vertex_count(b));
   }
   BlockPolygons polygons() const { return {vertex_start, vertices}; }
+  // Block b's time-scheme state at the start of a step.
+  BlockState scheme_state(BlockId b) const { return {velocity[b], acceleration[b], out_of_balance[b]}; }
 };
 
 // A material point of a block (a load, a fixed point, a monitor): where it is

@@ -45,6 +45,11 @@ void move_blocks(Blocks& blocks, const VecX& d_all, std::span<const Vec2> vertex
       blocks.count(),
       [&](std::size_t b) {
         const Vec6 d = d_all.segment<6>(6 * b);
+        // The scheme's state with the mass of the step's system (the block
+        // as it was).
+        const Mat6 mass = (blocks.mass[b] / blocks.area[b]) *
+                          integrated_tt(blocks.area[b], blocks.sxx[b], blocks.syy[b], blocks.sxy[b]);
+        const BlockEndState next = scheme.end_state(d, blocks.scheme_state(b), mass);
         const int first = blocks.vertex_start[b], end = blocks.vertex_start[b + 1];
         for (int v = first; v < end; ++v) blocks.vertices[v] += vertex_motion[v];
         const PolygonMoments pm = polygon_moments(std::span<const Vec2>(blocks.vertices).subspan(first, end - first));
@@ -54,7 +59,9 @@ void move_blocks(Blocks& blocks, const VecX& d_all, std::span<const Vec2> vertex
         blocks.syy[b] = pm.syy;
         blocks.sxy[b] = pm.sxy;
         blocks.stress[b] += elastic[blocks.material[b]] * d.tail<3>();
-        blocks.velocity[b] = scheme.end_velocity(d, blocks.velocity[b]);
+        blocks.velocity[b] = next.velocity;
+        blocks.acceleration[b] = next.acceleration;
+        blocks.out_of_balance[b] = next.out_of_balance;
         blocks.last_displacement[b] = d;
       },
       32);

@@ -24,7 +24,8 @@ MotionCheck check_block_motion(const Blocks& blocks, const VecX& d, std::vector<
 
 // The accepted step: vertices by the motion check_block_motion computed,
 // then the blocks' moments, stresses (elastic[material] times the strains),
-// velocities (the time scheme) and last displacements.
+// the time scheme's state (velocity, acceleration, unbalanced force) and
+// last displacements.
 void move_blocks(Blocks& blocks, const VecX& d, std::span<const Vec2> vertex_motion, std::span<const Mat3> elastic,
                  const TimeScheme& scheme);
 

@@ -1,40 +1,136 @@
 #pragma once
-// How a block's inertia and end-of-step velocity follow from its step
-// displacement d: Shi's scheme (Newmark β = ½, γ = 1), with the dynamic
-// parameter gg, the share of the last velocity carried into the step:
+// How a block's inertia, dashpot velocity, warm start and end-of-step motion
+// follow from its step displacement d: the one place that knows the time
+// integrator (docs/time_integration.md has the equations in
+// DDA's notation beside Newmark's).
 //
-//   v0 = gg·v_last,   d = v0·Δt + a·Δt²/2,   v1 = 2d/Δt − v0
+// Every scheme is a member of the generalized-α family (Chung & Hulbert
+// 1993) written for DDA's unknown, the step displacement d = u₁ − u₀:
 //
-// (exact for constant acceleration). The inertia force −ρ∫TᵀT a dA then
-// adds (2ρ/Δt²)∫TᵀT to the block's diagonal and (2ρ/Δt)∫TᵀT·v0 to its
-// right-hand side. Everything in the step that depends on the time
-// integration asks this struct: the inertia terms (assembly), viscous
-// boundaries' dashpots (boundary), the warm start (the solve regime) and
-// the velocity update (Update). A second-order scheme (Newmark average
-// acceleration, generalized-α) replaces these five formulas; if it keeps
-// state of its own (an acceleration per block), that state is written only
-// in Update, so a step redone with a smaller Δt finds it as it was.
+//   a₁ = (d − Δt·v₀ − Δt²(½ − β)·a₀) / (βΔt²)
+//   v₁ = v₀ + Δt[(1 − γ)·a₀ + γ·a₁]
+//   M[(1 − αm)·a₁ + αm·a₀] = (1 − αf)·R₁ + αf·R₀
+//
+// R is the generalised force not balanced by the springs, dashpots and
+// stresses (loads at t + Δt, contacts, boundaries, elasticity: everything
+// the step assembles besides inertia). Divided by (1 − αf), the step keeps
+// DDA's system with R₁ at t + Δt and only the inertia terms change:
+//
+//   K += c_m·M,  c_m = (1 − αm) / ((1 − αf)·β·Δt²)
+//   F += M·[(1 − αm)/(βΔt)·v₀ + ((1 − αm)(½ − β)/β − αm)·a₀] / (1 − αf)
+//        + αf/(1 − αf)·R₀
+//
+// with M = ρ∫TᵀT dA, the block's consistent mass. The schemes:
+//   shi:                β = ½, γ = 1, αm = αf = 0: v₁ = 2d/Δt − v₀, first
+//                       order, dissipative (exact for constant acceleration);
+//                       computed with Shi's own formulas, bit for bit;
+//   newmark:            β = ¼, γ = ½, αm = αf = 0 (average acceleration):
+//                       second order, no dissipation;
+//   generalized_alpha:  αm = (2ρ∞ − 1)/(ρ∞ + 1), αf = ρ∞/(ρ∞ + 1),
+//                       γ = ½ − αm + αf, β = ¼(1 − αm + αf)²: second order,
+//                       spectral radius ρ∞ at high frequency.
+// The dynamic parameter gg scales the state carried into the step (v₀, a₀,
+// R₀) for every scheme: 1 dynamic, 0 static.
+//
+// State: the velocity v, the acceleration a and the unbalanced force R of
+// each block at the end of the last step (Blocks::velocity, acceleration,
+// out_of_balance). It is written only in Update (end_state), so a step
+// redone with a smaller Δt finds it as it was; a and R are quantities at a
+// time t, not per step, so a change of Δt (a cut, regrowth) leaves them
+// consistent. Shi's scheme writes them too (the step's mean acceleration),
+// so a model may switch schemes between steps.
 #include "core/types.hpp"
 
 namespace dda {
 
+enum class Integrator { Shi, Newmark, GeneralizedAlpha };
+
+// One block's state at the start of the step (before gg).
+struct BlockState {
+  const Vec6& velocity;
+  const Vec6& acceleration;
+  const Vec6& out_of_balance;
+};
+
+// One block's state at the end of the step.
+struct BlockEndState {
+  Vec6 velocity, acceleration, out_of_balance;
+};
+
 struct TimeScheme {
   double dt = 0;
   double gg = 1;
+  Integrator integrator = Integrator::Shi;
+  double beta = 0.5, gamma = 1, alpha_m = 0, alpha_f = 0;
 
-  // Inertia of a block of density rho, ∫TᵀT = tt, last velocity v_last.
-  void add_inertia(double rho, const Mat6& tt, const Vec6& v_last, Mat6& k, Vec6& f) const {
-    k += (2 * rho / (dt * dt)) * tt;
-    f += (2 * rho / dt) * (tt * (gg * v_last));
+  // The scheme's parameters; rho_inf only for generalized-α.
+  void choose(Integrator kind, double rho_inf) {
+    integrator = kind;
+    alpha_m = alpha_f = 0;
+    if (kind == Integrator::Shi) {
+      beta = 0.5, gamma = 1;
+    } else if (kind == Integrator::Newmark) {
+      beta = 0.25, gamma = 0.5;
+    } else {
+      alpha_m = (2 * rho_inf - 1) / (rho_inf + 1);
+      alpha_f = rho_inf / (rho_inf + 1);
+      gamma = 0.5 - alpha_m + alpha_f;
+      beta = 0.25 * (1 - alpha_m + alpha_f) * (1 - alpha_m + alpha_f);
+    }
   }
-  // v1 = velocity_factor()·d − carried_velocity(v_last): what a dashpot acts on.
-  double velocity_factor() const { return 2.0 / dt; }
-  Vec6 carried_velocity(const Vec6& v_last) const { return gg * v_last; }
-  Vec6 end_velocity(const Vec6& d, const Vec6& v_last) const { return 2.0 / dt * d - gg * v_last; }
-  // The displacement the last step's motion extrapolates to (its acceleration
-  // held): (1 + gg)·v·Δt − d_last, with v = 2·d_last/Δt − gg·v_before.
-  Vec6 extrapolated_displacement(const Vec6& v_last, const Vec6& d_last) const {
-    return (1 + gg) * dt * v_last - d_last;
+  bool is_shi() const { return integrator == Integrator::Shi; }
+
+  // The mass coefficient c_m: the inertia adds c_m·M to the block's diagonal.
+  double mass_factor() const { return is_shi() ? 2 / (dt * dt) : (1 - alpha_m) / ((1 - alpha_f) * beta * dt * dt); }
+
+  // Inertia of a block of density rho, ∫TᵀT = tt.
+  void add_inertia(double rho, const Mat6& tt, const BlockState& s, Mat6& k, Vec6& f) const {
+    if (is_shi()) {
+      k += (2 * rho / (dt * dt)) * tt;
+      f += (2 * rho / dt) * (tt * (gg * s.velocity));
+      return;
+    }
+    k += (rho * mass_factor()) * tt;
+    const Vec6 carried =
+        ((1 - alpha_m) / (beta * dt)) * s.velocity + ((1 - alpha_m) * (0.5 - beta) / beta - alpha_m) * s.acceleration;
+    f += (gg * rho / (1 - alpha_f)) * (tt * carried) + (gg * alpha_f / (1 - alpha_f)) * s.out_of_balance;
+  }
+
+  // v₁ = velocity_factor()·d − carried_velocity(s): what a dashpot acts on.
+  double velocity_factor() const { return is_shi() ? 2.0 / dt : gamma / (beta * dt); }
+  Vec6 carried_velocity(const BlockState& s) const {
+    if (is_shi()) return gg * s.velocity;
+    return gg * ((gamma / beta - 1) * s.velocity + (dt * (gamma / (2 * beta) - 1)) * s.acceleration);
+  }
+  Vec6 end_velocity(const Vec6& d, const BlockState& s) const {
+    if (is_shi()) return 2.0 / dt * d - gg * s.velocity;
+    return velocity_factor() * d - carried_velocity(s);
+  }
+
+  // The state at the end of the step under displacement d; mass = ρ∫TᵀT as
+  // in the step's system.
+  BlockEndState end_state(const Vec6& d, const BlockState& s, const Mat6& mass) const {
+    BlockEndState e;
+    e.velocity = end_velocity(d, s);
+    if (is_shi()) {
+      // The step's constant acceleration, and the force that drove it.
+      e.acceleration = (e.velocity - gg * s.velocity) / dt;
+      e.out_of_balance = mass * e.acceleration;
+      return e;
+    }
+    const Vec6 v0 = gg * s.velocity, a0 = gg * s.acceleration;
+    e.acceleration = (d - dt * v0 - (dt * dt * (0.5 - beta)) * a0) / (beta * dt * dt);
+    e.out_of_balance =
+        (mass * ((1 - alpha_m) * e.acceleration + alpha_m * a0) - (gg * alpha_f) * s.out_of_balance) / (1 - alpha_f);
+    return e;
+  }
+
+  // The warm start: the displacement the last step's motion extrapolates to.
+  // Shi: its acceleration held, (1 + gg)·v·Δt − d_last (with
+  // v = 2·d_last/Δt − gg·v_before); the others: v·Δt + a·Δt²/2.
+  Vec6 extrapolated_displacement(const BlockState& s, const Vec6& d_last) const {
+    if (is_shi()) return (1 + gg) * dt * s.velocity - d_last;
+    return gg * (dt * s.velocity + (0.5 * dt * dt) * s.acceleration);
   }
 };
 

@@ -269,7 +269,7 @@ void Boundaries::add_terms(double t_end, double stiff_spring, const Blocks& bloc
     const Boundary& boundary = boundaries_[p.boundary];
     if (boundary.kind != BoundaryKind::Spring) {
       terms.k[p.block] = Symmetric6(terms.k[p.block].full() + scheme.velocity_factor() * t.transpose() * p.c * t);
-      terms.f[p.block] += t.transpose() * (p.c * (t * scheme.carried_velocity(blocks.velocity[p.block])));
+      terms.f[p.block] += t.transpose() * (p.c * (t * scheme.carried_velocity(blocks.scheme_state(p.block))));
       if (boundary.incident) terms.f[p.block] += t.transpose() * (2 * (p.c * boundary.incident_velocity));
       if (boundary.kind == BoundaryKind::FreeField) terms.f[p.block] += t.transpose() * free_field_load(p);
     } else {
@@ -279,6 +279,46 @@ void Boundaries::add_terms(double t_end, double stiff_spring, const Blocks& bloc
       add_spring(p.block, p.point, p.k * Eigen::Matrix2d::Identity(), p.point);
     }
   }
+}
+
+Boundaries::Work Boundaries::step_work(double t0, double t_end, double stiff_spring, const Blocks& blocks,
+                                       const VecX& d, const TimeScheme& scheme) const {
+  Work w;
+  auto d_of = [&](BlockId b) -> Vec6 { return d.segment<6>(6 * b); };
+  // A spring pulling `point` towards `goal` (along `direction` only when it is not zero).
+  auto spring_force = [&](const Vec2& point, const Vec2& goal, const Vec2& direction) -> Vec2 {
+    if (direction.norm() > 0) return stiff_spring * direction * (goal - point).dot(direction);
+    return stiff_spring * (goal - point);
+  };
+  for (const FixedPoint& p : fixed_points_) {
+    const Vec2 du = point_displacement(p.point, blocks.centroid[p.block], d_of(p.block));
+    w.fixed_points +=
+        0.5 *
+        (spring_force(p.point, p.origin, Vec2::Zero()) + spring_force(p.point + du, p.origin, Vec2::Zero())).dot(du);
+  }
+  for (const DisplacementTarget& t : targets_) {
+    auto target_at = [&](double time) -> Vec2 {
+      if (t.mode == DisplacementTarget::Displacement) return t.history.value(time) * t.direction;
+      if (t.mode == DisplacementTarget::Velocity) return t.history.integral(time) * t.direction;
+      return t.target;
+    };
+    const Vec2 du = point_displacement(t.point, blocks.centroid[t.block], d_of(t.block));
+    w.targets += 0.5 * (spring_force(t.point, t.origin + target_at(t0), t.direction) +
+                        spring_force(t.point + du, t.origin + target_at(t_end), t.direction))
+                           .dot(du);
+  }
+  for (const BoundaryPoint& p : boundary_points_) {
+    const Mat26 t = displacement_matrix(p.point, blocks.centroid[p.block]);
+    const Vec2 du = t * d_of(p.block);
+    if (boundaries_[p.boundary].kind == BoundaryKind::Viscous) {
+      const BlockState s = blocks.scheme_state(p.block);
+      const Vec2 before = -p.c * (t * s.velocity), after = -p.c * (t * scheme.end_velocity(d_of(p.block), s));
+      w.viscous += 0.5 * (before + after).dot(du);
+    } else {
+      w.springs += -0.5 * p.k * du.squaredNorm();
+    }
+  }
+  return w;
 }
 
 void Boundaries::update(const Blocks& blocks, const VecX& d_all, const TimeScheme& scheme) {
@@ -294,7 +334,7 @@ void Boundaries::update(const Blocks& blocks, const VecX& d_all, const TimeSchem
     if (b.kind != BoundaryKind::Spring) {
       const Mat26 t = displacement_matrix(p.point, blocks.centroid[p.block]);
       p.force = p.c * ((b.incident ? Vec2(2 * b.incident_velocity) : Vec2(Vec2::Zero())) -
-                       t * scheme.end_velocity(d_of(p.block), blocks.velocity[p.block]));
+                       t * scheme.end_velocity(d_of(p.block), blocks.scheme_state(p.block)));
       if (b.kind == BoundaryKind::FreeField) p.force += free_field_load(p);
     } else {
       p.force = -p.k * du;

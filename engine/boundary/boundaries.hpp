@@ -67,6 +67,17 @@ class Boundaries {
   // (before the blocks themselves move) and the boundary points record the
   // force they exerted.
   void update(const Blocks& blocks, const VecX& d, const TimeScheme& scheme);
+  // The work (J/m) each kind did on the blocks over the accepted step d
+  // (before update), trapezoidal between its forces at the step's start and
+  // end: fixed points and DHI targets (springs to where they should be, the
+  // targets at t0 and t_end), VBC dashpots (at the start and end velocities:
+  // negative, what they absorbed) and SBC springs (from zero, as the step
+  // applies them, to −k·Δu: negative).
+  struct Work {
+    double fixed_points = 0, targets = 0, viscous = 0, springs = 0;
+  };
+  Work step_work(double t0, double t_end, double stiff_spring, const Blocks& blocks, const VecX& d,
+                 const TimeScheme& scheme) const;
 
   // What a checkpoint holds (core/archive.hpp): every point with its state.
   template <class Archive>

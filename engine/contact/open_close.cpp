@@ -41,9 +41,10 @@ ContactMotion contact_motion(const ContactGradients& k, const ContactOffsets& o,
   return {o.d0 + k.en_v.dot(dv) + k.en_e.dot(de), k.es_v.dot(dv) + k.es_e.dot(de)};
 }
 
-// A contact's springs: g0 (normal) and shear_ratio·g0 (shear), scaled.
+// A contact's springs (ContactParameters::springs), scaled.
 ContactSprings contact_springs(const Contact& c, const ContactParameters& p) {
-  return {c.scale * p.g0, c.scale * p.shear_ratio * p.g0, p.tolerance};
+  const ContactParameters::Springs k = p.springs(c);
+  return {c.scale * k.kn, c.scale * k.ks, p.tolerance};
 }
 }  // namespace
 

@@ -20,6 +20,22 @@ struct ContactParameters {
   double tolerance = 0;    // open-close hysteresis (m)
   std::span<const JointMaterial> joints;
   std::span<const double> tan_friction;  // tan φ per joint material
+
+  // A contact's full springs (before its overlap scale): its joint's
+  // stiffness over the length it stands for when the joint material gives
+  // one and the contact stands for a length (facing edges), else g0 and
+  // shear_ratio·g0 (corners, and joints without a stiffness).
+  struct Springs {
+    double kn, ks;
+  };
+  Springs springs(const Contact& c) const {
+    const JointMaterial& j = joints[c.joint];
+    if (j.normal_stiffness > 0 && c.length > 0) {
+      const double ks = j.shear_stiffness > 0 ? j.shear_stiffness : shear_ratio * j.normal_stiffness;
+      return {j.normal_stiffness * c.length, ks * c.length};
+    }
+    return {g0, shear_ratio * g0};
+  }
 };
 
 // Per contact, parallel to the contact list: what the open-close iteration

@@ -30,6 +30,14 @@ void validate(const JointMaterial& m, int index) {
     throw Error(msg(what(), ": cohesion must be zero or positive, got ", m.cohesion));
   if (!std::isfinite(m.tensile_strength) || m.tensile_strength < 0)
     throw Error(msg(what(), ": tensile strength must be zero or positive, got ", m.tensile_strength));
+  if (!std::isfinite(m.normal_stiffness) || m.normal_stiffness < 0)
+    throw Error(
+        msg(what(), ": normal stiffness kn must be zero (from g0) or positive (Pa/m), got ", m.normal_stiffness));
+  if (!std::isfinite(m.shear_stiffness) || m.shear_stiffness < 0)
+    throw Error(
+        msg(what(), ": shear stiffness ks must be zero (from kn or g0) or positive (Pa/m), got ", m.shear_stiffness));
+  if (m.shear_stiffness > 0 && m.normal_stiffness == 0)
+    throw Error(msg(what(), ": shear stiffness ks needs a normal stiffness kn (Pa/m) as well"));
 }
 
 Mat3 elastic_matrix(const RockMaterial& m, PlaneMode mode) {

@@ -24,9 +24,16 @@ struct JointMaterial {
   double friction_deg = 30;     // friction angle φ, degrees (radians inside the engine)
   double cohesion = 0;          // Pa
   double tensile_strength = 0;  // Pa
+  // Joint stiffness (Pa/m) as UDEC users give it; 0: from the contact
+  // springs g0 and shear_ratio·g0 (the paper's Eq. 4: k_n = 2·g0/l). Given,
+  // the springs of a contact standing for a length L of joint are k_n·L and
+  // k_s·L (ContactParameters::springs); k_s = 0 with k_n given:
+  // shear_ratio·k_n.
+  double normal_stiffness = 0;
+  double shear_stiffness = 0;
   template <class Archive>
   void fields(Archive& ar) {
-    ar(friction_deg, cohesion, tensile_strength);
+    ar(friction_deg, cohesion, tensile_strength, normal_stiffness, shear_stiffness);
   }
 };
 

@@ -77,8 +77,37 @@ void Loads::add_terms(double t_end, const Blocks& blocks, BlockTerms& terms) {
 }
 
 void Loads::move_points(const Blocks& blocks, const VecX& d) {
-  for (PointLoad& p : point_loads_)
+  for (PointLoad& p : point_loads_) {
     p.point += point_displacement(p.point, blocks.centroid[p.block], d.segment<6>(6 * p.block));
+    p.force_before = p.force;
+    p.applied = true;
+  }
+  for (PressureLoad& load : pressure_loads_) {
+    load.pressure_before = load.pressure;
+    load.applied = true;
+  }
+}
+
+Loads::Work Loads::step_work(const Blocks& blocks, const VecX& d) const {
+  Work w;
+  for (const PointLoad& p : point_loads_) {
+    const Vec2 before = p.applied ? p.force_before : p.force;
+    w.point +=
+        0.5 *
+        (before + p.force).dot(displacement_matrix(p.point, blocks.centroid[p.block]) * d.segment<6>(6 * p.block));
+  }
+  const BlockPolygons polys = blocks.polygons();
+  for (const PressureLoad& load : pressure_loads_) {
+    const double mean = 0.5 * ((load.applied ? load.pressure_before : load.pressure) + load.pressure);
+    for (const EdgeRef& e : load.edges) {
+      const Vec2& a = polys.vertex(e.block, e.edge);
+      const Vec2& b = polys.vertex(e.block, e.edge + 1);
+      const Vec2 outward((b - a).y(), -(b - a).x());
+      w.pressure +=
+          -mean * outward.dot(displacement_matrix(0.5 * (a + b), blocks.centroid[e.block]) * d.segment<6>(6 * e.block));
+    }
+  }
+  return w;
 }
 
 }  // namespace dda

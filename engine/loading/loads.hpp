@@ -30,6 +30,13 @@ class Loads {
   // The accepted step's displacement d moves the load points with their
   // blocks (before the blocks themselves move).
   void move_points(const Blocks& blocks, const VecX& d);
+  // The work (J/m) of the point loads and of the pressures on the accepted
+  // step displacement d (before move_points): trapezoidal between the forces
+  // the step before applied and those this step applied (those at t_end).
+  struct Work {
+    double point = 0, pressure = 0;
+  };
+  Work step_work(const Blocks& blocks, const VecX& d) const;
 
   // What a checkpoint holds (core/archive.hpp): every load with its history.
   template <class Archive>
@@ -42,9 +49,11 @@ class Loads {
     BlockId block;
     Vec2 point;
     Vec2 force;
+    Vec2 force_before = Vec2::Zero();  // applied in the step before (for its work)
+    bool applied = false;              // by a step yet
     template <class Archive>
     void fields(Archive& ar) {
-      ar(block, point, force);
+      ar(block, point, force, force_before, applied);
     }
   };
   struct PointLoadHistory {
@@ -61,9 +70,11 @@ class Loads {
     double pressure;
     History history;
     bool from_history;
+    double pressure_before = 0;  // applied in the step before (for its work)
+    bool applied = false;        // by a step yet
     template <class Archive>
     void fields(Archive& ar) {
-      ar(edges, pressure, history, from_history);
+      ar(edges, pressure, history, from_history, pressure_before, applied);
     }
   };
   std::vector<PointLoad> point_loads_;

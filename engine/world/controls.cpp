@@ -23,6 +23,7 @@ constexpr ControlRange kZeroAutomaticOrPositive{0, kInf, false, false, "must be 
 constexpr ControlRange kZeroEveryCoreOrPositive{0, kInf, false, false, "must be zero (every core) or positive"};
 
 constexpr const char* kPlaneNames[] = {"stress", "strain"};                            // PlaneMode order
+constexpr const char* kIntegratorNames[] = {"shi", "newmark", "generalized_alpha"};    // Integrator order
 constexpr const char* kPreconditionerNames[] = {"auto", "block_jacobi", "multigrid"};  // Preconditioning order
 constexpr const char* kSolverNames[] = {"auto", "pcg", "cholmod"};                     // SolverKind order
 constexpr const char* kFillOrderingNames[] = {"metis", "amd"};                         // FillOrdering order
@@ -65,6 +66,18 @@ const ControlSpec kControls[] = {
         "gg", [](Controls& c) -> double& { return c.gg; }, kUnitInterval,
         "dynamic parameter in [0, 1]: share of the velocity carried to the next step (1 = fully dynamic, "
         "0 = static)"),
+    choice(
+        "integrator", kIntegratorNames, [](const Controls& c) { return static_cast<int>(c.integrator); },
+        [](Controls& c, int i) { c.integrator = static_cast<Integrator>(i); },
+        "time integration (`docs/time_integration.md`): `\"shi\"`, the paper's scheme (Newmark β = ½, γ = 1: "
+        "first order, it damps a wave of angular frequency ω by about exp(−ω²Δt·t/4)); `\"newmark\"`, "
+        "average acceleration (β = ¼, γ = ½: second order, no numerical damping); "
+        "`\"generalized_alpha\"` (Chung–Hulbert: second order, damping only near the step's own "
+        "frequency, as `rho_inf` says)"),
+    number(
+        "rho_inf", [](Controls& c) -> double& { return c.rho_inf; }, kUnitInterval,
+        "`generalized_alpha` only: spectral radius at infinite frequency, in [0, 1]; 1 = no numerical "
+        "damping, 0 = the most (asymptotic annihilation)"),
     number(
         "shear_ratio", [](Controls& c) -> double& { return c.shear_ratio; }, kZeroOrPositive,
         "shear contact spring = shear_ratio × g0 (Shi's 2/5)"),

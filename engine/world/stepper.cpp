@@ -3,7 +3,8 @@
 //   step
 //   ├─ check_new_model       once per set of blocks: no overlaps, the g2 length
 //   ├─ begin_step            validate controls; derive automatic g0, g1;
-//   │                        threads; material constants; the solve regime
+//   │                        threads; material constants; the time scheme
+//   │                        (and the state of new blocks); the solve regime
 //   │                        (solve_regime.hpp) and the linear solver
 //   ├─ DetectContacts        contact/contact_detection: search or reuse the list
 //   ├─ attempt, until one is accepted:
@@ -16,18 +17,19 @@
 //   │  └─ ControlStep        block/motion: g2 bound, contact range, inverted
 //   │                        blocks, penetration → accept, or cut Δt (or widen
 //   │                        the contact range) and redo (step_control.hpp)
-//   └─ Update                block/motion, loading/, boundary/, contacts; Δt
-//                            grows back after a clean step
+//   └─ Update                the energy budget (world/energy.cpp); block/motion,
+//                            loading/, boundary/, contacts; Δt grows back
+//                            after a clean step
 //
 // Each stage is timed into StepStats::profile (step_profile.hpp). Where the
 // next changes land:
-//   * a time integrator (Newmark, generalized-α): block/time_scheme.hpp, the
-//     one place that says how inertia, dashpots, the warm start and the
-//     velocity update follow from the step displacement; state it keeps is
-//     written in Update only, so a redone attempt finds it untouched;
-//   * an energy budget: each stage's work terms next to its timer (the
-//     block terms, loads, boundaries and contact forces are all in hand
-//     after the accepted solve, before Update);
+//   * the time integrator (Shi, Newmark, generalized-α): block/time_scheme.hpp,
+//     the one place that says how inertia, dashpots, the warm start and the
+//     velocity update follow from the step displacement; its state
+//     (Blocks::velocity, acceleration, out_of_balance) is written in Update
+//     only, so a redone attempt finds it untouched;
+//   * the energy budget: world/energy.cpp, at the start of Update (each
+//     kind's work from its own folder: Loads/Boundaries::step_work);
 //   * contact transfer and friction: contact/ (detection carries states
 //     over by identity; open_close.cpp decides states with contact_law.cpp);
 //     what a redo restores is save/restore_contact_states;
@@ -43,6 +45,7 @@
 #include "core/memory.hpp"
 #include "core/parallel.hpp"
 #include "geometry/polygon.hpp"
+#include "world/energy.hpp"
 
 namespace dda {
 
@@ -133,6 +136,7 @@ void Stepper::begin_step(WorldState& w) {
   derive_automatic_controls(w);
   set_up_threads(w.controls);
   derive_material_constants(w);
+  start_time_scheme(w);
   regime_ = SolveRegime::choose(w.controls, w.last_stats);
   set_up_solver(w);
 }
@@ -163,6 +167,20 @@ void Stepper::derive_material_constants(const WorldState& w) {
   for (std::size_t j = 0; j < w.joints.size(); ++j) tan_friction_[j] = std::tan(deg_to_rad(w.joints[j].friction_deg));
   contact_law_ = {g0_, c.shear_ratio, c.contact_tolerance * w.half_height, w.joints, tan_friction_};
   scheme_.gg = c.gg;
+  scheme_.choose(c.integrator, c.rho_inf);
+}
+
+// The second-order schemes' state of blocks that have none yet (new blocks):
+// their acceleration under the loads at the step's start.
+void Stepper::start_time_scheme(WorldState& w) {
+  Blocks& blocks = w.blocks;
+  if (scheme_.is_shi() || std::none_of(blocks.acceleration.begin(), blocks.acceleration.end(),
+                                       [](const Vec6& a) { return std::isnan(a[0]); }))
+    return;
+  BlockTerms loads;
+  loads.f.assign(blocks.count(), Vec6::Zero());
+  w.loads.add_terms(w.time, blocks, loads);
+  start_time_scheme_state(blocks, w.controls.gravity, loads);
 }
 
 // The linear solver, told once per step what the step's solves are like.
@@ -228,7 +246,7 @@ void Stepper::predict(WorldState& w) {
       [&](std::size_t b) {
         solution_.segment<6>(6 * b) =
             regime_.extrapolate_warm_start
-                ? scheme_.extrapolated_displacement(blocks.velocity[b], blocks.last_displacement[b])
+                ? scheme_.extrapolated_displacement(blocks.scheme_state(b), blocks.last_displacement[b])
                 : blocks.last_displacement[b];
       },
       256);
@@ -370,6 +388,8 @@ void Stepper::control_step(WorldState& w, Rejection r) {
 // centroid), then the blocks, then what the contacts keep; time advances.
 void Stepper::update(WorldState& w) {
   StageTimer timer(stats_.profile, Stage::Update);
+  account_step_energy(w, solution_, scheme_, elastic_, linearisation_, contact_law_,
+                      w.controls.fixed_point_factor * g0_);
   const Blocks& blocks = w.blocks;
   w.loads.move_points(blocks, solution_);
   w.boundaries.update(blocks, solution_, scheme_);

@@ -58,6 +58,7 @@ class Stepper {
   void derive_automatic_controls(WorldState& w);
   void set_up_threads(const Controls& c);
   void derive_material_constants(const WorldState& w);
+  void start_time_scheme(WorldState& w);
   void set_up_solver(const WorldState& w);
   void detect_contacts(WorldState& w);
   Rejection attempt(WorldState& w);

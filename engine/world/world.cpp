@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "block/displacement.hpp"
 #include "core/error.hpp"
@@ -96,6 +97,8 @@ BlockId World::add_block(std::vector<Vec2> vertices, int rock_material, std::vec
   bl.stress.push_back(Vec3::Zero());
   bl.velocity.push_back(Vec6::Zero());
   bl.last_displacement.push_back(Vec6::Zero());
+  bl.acceleration.push_back(Vec6::Constant(std::numeric_limits<double>::quiet_NaN()));
+  bl.out_of_balance.push_back(Vec6::Zero());
   s_.prepared = false;
   return id;
 }

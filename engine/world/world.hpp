@@ -142,6 +142,9 @@ class World {
     return s_.blocks.centroid[check(b)] - s_.blocks.initial_centroid[check(b)];
   }
   const std::vector<Contact>& contacts() const { return s_.contacts; }
+  // The energy budget (world/energy_budget.hpp): held now, work since the
+  // first step and in the last one.
+  const EnergyBudget& energy() const { return s_.energy; }
 
   // Half the model's height at the start (y extent / 2): the g2 reference length.
   double half_height() const;

@@ -10,6 +10,7 @@
 #include "core/material.hpp"
 #include "loading/loads.hpp"
 #include "world/controls.hpp"
+#include "world/energy_budget.hpp"
 #include "world/step_profile.hpp"
 
 namespace dda {
@@ -30,6 +31,7 @@ struct WorldState {
   double half_height = 0;  // the g2 reference length, fixed by the first step's checks (0: not yet)
   bool prepared = false;   // the first-step checks ran on these blocks
   StepStats last_stats;
+  EnergyBudget energy;
 
   // What a checkpoint holds (core/archive.hpp): all of it.
   template <class Archive>
@@ -42,6 +44,7 @@ struct WorldState {
     ar.section("tracked points"), ar(tracked);
     ar.section("contacts"), ar(contacts);
     ar.section("clock"), ar(time, steps, dt, half_height, prepared, last_stats);
+    ar.section("energy"), ar(energy);
   }
 
   // Half the y extent of the blocks as they are now.

@@ -10,7 +10,8 @@
 --          over all rows only (patch_hops = 0), --set patch=N
 --          patches of N couplings; --set solver=pcg|cholmod forces the linear
 --          solver (default: auto) and names the row wall(40)[cholmod];
---          --set gg=1 makes a wall dynamic (row wall(40)gg1).
+--          --set gg=1 makes a wall dynamic (row wall(40)gg1);
+--          --set integrator=newmark|generalized_alpha (default: the scene's, shi).
 -- Run:     build/dda run scripts/bench/bench.lua --set scene=wall --set n=20 --set threads=2 [--set csv=FILE]
 --          (scripts/bench/run.sh runs the whole table, one process per row so
 --          that each row's peak memory is its own).
@@ -31,6 +32,7 @@ local steps = dda.param("steps", 10)
 local warmup = dda.param("warmup", 2)
 local csv = dda.param("csv", "")
 local pre = dda.param("pre", "")  -- preconditioner; "" keeps the scene's (auto)
+local integrator = dda.param("integrator", "")
 local predict = dda.param("predict", true)  -- false: open-close iterations start from the last step's states
 local patch = dda.param("patch", -1)  -- re-solve patch hops; -1 keeps the engine's default
 local solver = dda.param("solver", "")  -- "pcg" or "cholmod"; "" keeps the automatic choice
@@ -60,6 +62,7 @@ if solver ~= "" then
 end
 if pre ~= "" then m:controls{ preconditioner = pre } end
 m:controls{ predict_states = predict }
+if integrator ~= "" then m:controls{ integrator = integrator } end
 if patch >= 0 then m:controls{ patch_hops = patch } end
 m:step(warmup)
 local sum = { t_detect = 0, t_assemble = 0, t_solve = 0, t_check = 0, t_update = 0, t_total = 0,

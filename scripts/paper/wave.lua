@@ -3,7 +3,8 @@
 --
 -- Models:  the bars of bars.lua (Models 1-6), rock rho = 2000 kg/m^3, E = 50 GPa,
 --          nu = 0.25, plane stress (1-D bar speed sqrt(E/rho) = 5000 m/s), controls
---          g1 = 2e-6 s, gg = 1, g2 = 0.005, g0 given in multiples of E.
+--          g1 = 2e-6 s, gg = 1, g2 = 0.005, g0 given in multiples of E, Shi's time
+--          integrator (the paper's: integrator = "shi" pinned, whatever the default).
 --          Load: a pressure on the left-end edges (SHI, positive = compression
 --          pushing into the bar), amplitude A (5 MPa), frequency f:
 --            "half": p(t) = A sin(2 pi f t) for t < T/2, then 0 (compression only);
@@ -31,6 +32,8 @@
 --   absorbed share      1 - |reflected with the boundary| / |reflected with Fixed|;
 --   T/dt                the wave period over the mean step of the run.
 -- Use:     local wave = require "wave"; local r = wave.run{ tag = "fig3_g0_20", g0 = 20 }
+-- Returns: r with the centre's series, the run's figures and its energy budget
+--          (r.energy = m:energy() at the end).
 -- Writes:  <out>/<tag>.csv (step, time, sxx, vx[, ux]) per run; fig:finish() writes
 --          <out>/<figure>_numbers.csv (figure,quantity,paper,ours,unit) and the plots.
 
@@ -53,12 +56,14 @@ end
 
 -- One bar run. opts: tag (monitor/CSV name), model (1), g0 (x E), load ("half"),
 -- freq (1000), amp (5e6), phi (40), c (8e6), tension (8e6), right ("fixed"),
--- p (x E), per_length (true), t_end (s), end_monitor (false).
+-- p (x E), per_length (true), t_end (s), end_monitor (false), integrator ("shi"),
+-- dt (g1, 2e-6 s), at (the monitor point, bars.centre).
 function wave.run(o)
   local model = o.model or 1
   local freq, amp = o.freq or 1000, o.amp or wave.A
   local g0 = (o.g0 or 1) * E
-  local m = dda.model{ plane = "stress", g0 = g0, g1 = 2e-6, g2 = 0.005, gg = 1 }
+  local m = dda.model{ plane = "stress", g0 = g0, g1 = o.dt or 2e-6, g2 = 0.005, gg = 1,
+                       integrator = o.integrator or "shi" }
   local rock = m:rock(bars.rock)
   local joint = m:joint{ friction = o.phi or 40, cohesion = o.c or 8e6, tension = o.tension or 8e6 }
   local blocks = bars.build(m, model, rock, joint)
@@ -93,7 +98,7 @@ function wave.run(o)
       end
     end
   elseif right ~= "free" then error("wave.run: unknown right end " .. tostring(right)) end
-  local centre = m:monitor{ name = o.tag, at = bars.centre, fields = {"sxx", "vx"} }
+  local centre = m:monitor{ name = o.tag, at = o.at or bars.centre, fields = {"sxx", "vx"} }
   local endmon = nil
   if o.end_monitor then
     endmon = m:monitor{ name = o.tag .. "_end", at = {19.9, 0.5}, fields = {"ux"} }
@@ -105,7 +110,7 @@ function wave.run(o)
     dt = m:time() / math.max(m:steps(), 1), T = 1 / freq, dur = dur,
     t_comp = t_comp, t_tens = t_tens, cuts = m:totals().step_cuts,
     t = centre:times(), sxx = centre:series("sxx"), vx = centre:series("vx"),
-    t_split = 20 / c_guess + dur / 2, file = centre:file(), monitor = centre,
+    t_split = 20 / c_guess + dur / 2, file = centre:file(), monitor = centre, energy = m:energy(),
   }
   if endmon then r.ux_end = endmon:series("ux"); r.t_end_series = endmon:times() end
   r.T_over_dt = r.T / r.dt

@@ -177,6 +177,35 @@ TEST_F(LuaApi, PressurePushesIntoTheBlock) {
   EXPECT_NEAR(number("vx") / number("t"), 1.0, 1e-3);
 }
 
+TEST_F(LuaApi, EnergyBudgetOfAFreeFall) {
+  // Reference: in free fall the kinetic energy equals the work of gravity
+  // (½·m·(g·t)² = m·g·(g·t²/2)), m = 1000 kg, g = 10, t = 0.1 s: 500 J/m;
+  // every scheme is exact for constant acceleration, so the residual is
+  // round-off. The monitor field carries the same number to the CSV.
+  run("m = dda.model{ gravity = {0, -10}, g1 = 0.01, g2 = 0.5, integrator = 'generalized_alpha', rho_inf = 0.5 }\n"
+      "rock = m:rock{ density = 1000, E = 1e9, nu = 0.25 }\n"
+      "b = m:add_block{ {0, 0}, {1, 0}, {1, 1}, {0, 1} }\n"
+      "mon = m:monitor{ at = {0.5, 0.5}, fields = {'energy_kinetic', 'energy_gravity', 'energy_residual'} }\n"
+      "m:step(10)\n"
+      "e = m:energy()\n"
+      "kinetic, gravity, residual, step_gravity = e.kinetic, e.gravity, e.residual, e.step.gravity\n"
+      "mon_kinetic = mon:value('energy_kinetic')\n"
+      "file = mon:file()\n");
+  EXPECT_NEAR(number("kinetic"), 500, 1e-9);
+  EXPECT_NEAR(number("gravity"), 500, 1e-9);
+  EXPECT_NEAR(number("residual"), 0, 1e-9);
+  EXPECT_NEAR(number("step_gravity"), 1000 * 10 * (0.5 * 10 * (0.01 - 0.0081)), 1e-9);  // g·(t₁² − t₀²)/2
+  EXPECT_EQ(number("mon_kinetic"), number("kinetic"));
+  const auto csv = dda::test::read_csv(string("file"));
+  EXPECT_EQ(csv.header,
+            (std::vector<std::string>{"step", "time", "energy_kinetic", "energy_gravity", "energy_residual"}));
+  EXPECT_NE(error_of("m:controls{ rho_inf = 1.5 }").find("option 'rho_inf' must lie in [0, 1], got 1.5"),
+            std::string::npos);
+  EXPECT_NE(error_of("m:controls{ integrator = 'leapfrog' }")
+                .find("option 'integrator' must be \"shi\", \"newmark\" or \"generalized_alpha\""),
+            std::string::npos);
+}
+
 TEST_F(LuaApi, MonitorsRecordEveryNSteps) {
   run("m = dda.model{ gravity = {0, -10}, g1 = 0.01, g2 = 0.5 }\n"
       "rock = m:rock{ density = 1000, E = 1e9, nu = 0.25 }\n"

@@ -1,0 +1,108 @@
+#include "world/energy.hpp"
+
+#include <Eigen/LU>
+
+#include "assembly/block_terms.hpp"
+#include "core/parallel.hpp"
+
+namespace dda {
+
+namespace {
+
+// Kinetic and strain energy of the blocks before and after the step, with
+// the mass and area of the step's system (the blocks as they were), and the
+// work of gravity: per block, summed in block order.
+struct BlockEnergy {
+  double kinetic_before = 0, kinetic_after = 0, strain_before = 0, strain_after = 0, gravity = 0;
+};
+
+BlockEnergy block_energy(const Blocks& blocks, const VecX& d, const TimeScheme& scheme, std::span<const Mat3> elastic,
+                         const Vec2& gravity) {
+  BlockEnergy e;
+  for (std::size_t b = 0; b < blocks.count(); ++b) {
+    const Vec6 db = d.segment<6>(6 * b);
+    const BlockState s = blocks.scheme_state(static_cast<BlockId>(b));
+    const Mat6 mass = (blocks.mass[b] / blocks.area[b]) * block_tt(blocks, b);
+    const Vec6 v1 = scheme.end_velocity(db, s);
+    e.kinetic_before += 0.5 * s.velocity.dot(mass * s.velocity);
+    e.kinetic_after += 0.5 * v1.dot(mass * v1);
+    const Mat3 c = elastic[blocks.material[b]].inverse();
+    const Vec3 before = blocks.stress[b], after = before + elastic[blocks.material[b]] * db.tail<3>();
+    e.strain_before += 0.5 * blocks.area[b] * before.dot(c * before);
+    e.strain_after += 0.5 * blocks.area[b] * after.dot(c * after);
+    e.gravity += blocks.mass[b] * gravity.dot(db.head<2>());
+  }
+  return e;
+}
+
+// Elastic energy of the closed contacts' springs after the last check, and
+// the work of friction on the sliding ones over the step.
+struct ContactEnergy {
+  double held = 0, friction = 0;
+};
+
+ContactEnergy contact_energy(std::span<const Contact> contacts, const ContactLinearisation& lin, const VecX& d,
+                             const ContactParameters& p) {
+  ContactEnergy e;
+  for (std::size_t i = 0; i < contacts.size(); ++i) {
+    const Contact& c = contacts[i];
+    if (c.state == ContactState::Open) continue;
+    const ContactParameters::Springs k = p.springs(c);
+    const double kn = c.scale * k.kn, ks = c.scale * k.ks;
+    if (kn > 0) e.held += 0.5 * c.normal_force * c.normal_force / kn;
+    if (c.state == ContactState::Locked) {
+      if (ks > 0) e.held += 0.5 * c.shear_force * c.shear_force / ks;
+    } else {
+      // Sliding: the friction force on the vertex block along the edge
+      // (Contact::shear_force) times the step's shear motion.
+      const ContactGradients& g = lin.gradients[i];
+      const double ds_step = g.es_v.dot(d.segment<6>(6 * c.vblock)) + g.es_e.dot(d.segment<6>(6 * c.eblock));
+      e.friction += c.shear_force * ds_step;
+    }
+  }
+  return e;
+}
+
+}  // namespace
+
+void account_step_energy(WorldState& w, const VecX& d, const TimeScheme& scheme, std::span<const Mat3> elastic,
+                         const ContactLinearisation& lin, const ContactParameters& contact_law, double fixed_spring) {
+  const BlockEnergy blocks = block_energy(w.blocks, d, scheme, elastic, w.controls.gravity);
+  const ContactEnergy contacts = contact_energy(w.contacts, lin, d, contact_law);
+  const Loads::Work loads = w.loads.step_work(w.blocks, d);
+  const Boundaries::Work bounds = w.boundaries.step_work(w.time, w.time + w.dt, fixed_spring, w.blocks, d, scheme);
+
+  EnergyTerms step;
+  step.kinetic = blocks.kinetic_after;
+  step.strain = blocks.strain_after;
+  step.contact = contacts.held;
+  step.gravity = blocks.gravity;
+  step.point_loads = loads.point;
+  step.pressure = loads.pressure;
+  step.targets = bounds.targets;
+  step.fixed_points = bounds.fixed_points;
+  step.viscous = bounds.viscous;
+  step.spring_boundaries = bounds.springs;
+  step.friction = contacts.friction;
+  const double contact_before = w.energy.started ? w.energy.total.contact : 0.0;
+  const double held_before = blocks.kinetic_before + blocks.strain_before + contact_before;
+  step.residual = (step.held() - held_before) - step.work();
+
+  EnergyTerms& total = w.energy.total;
+  total.kinetic = step.kinetic;
+  total.strain = step.strain;
+  total.contact = step.contact;
+  total.gravity += step.gravity;
+  total.point_loads += step.point_loads;
+  total.pressure += step.pressure;
+  total.targets += step.targets;
+  total.fixed_points += step.fixed_points;
+  total.viscous += step.viscous;
+  total.spring_boundaries += step.spring_boundaries;
+  total.friction += step.friction;
+  total.residual += step.residual;
+  w.energy.last_step = step;
+  w.energy.started = true;
+}
+
+}  // namespace dda

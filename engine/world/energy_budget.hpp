@@ -1,0 +1,61 @@
+#pragma once
+// The energy budget (J per metre of thickness): what the blocks and contacts
+// hold, the work each kind of load and boundary does on the blocks, what
+// friction takes, and the balance residual, per step and since the first
+// step. Accounted by account_step_energy (energy.hpp); docs/time_integration.md
+// says what each term is and how the residual reads.
+
+namespace dda {
+
+struct EnergyTerms {
+  // Held (at the end of the step).
+  double kinetic = 0;  // ½·vᵀMv per block, M = ρ∫TᵀT (strain rates included)
+  double strain = 0;   // ½·A·σᵀE⁻¹σ per block
+  double contact = 0;  // ½N²/k_n (+ ½S²/k_s locked) per closed contact
+  // Work done on the blocks (negative: taken from them).
+  double gravity = 0, point_loads = 0, pressure = 0, targets = 0, fixed_points = 0;
+  double viscous = 0;            // VBC dashpots (≤ 0: absorbed)
+  double spring_boundaries = 0;  // SBC springs (≤ 0)
+  double friction = 0;           // sliding contacts (≤ 0: dissipated)
+  // (held now − held before) − work: energy the time integrator (and the
+  // contacts' state changes) made (> 0) or dissipated (< 0).
+  double residual = 0;
+
+  template <class Archive>
+  void fields(Archive& ar) {
+    ar(kinetic, strain, contact, gravity, point_loads, pressure, targets, fixed_points, viscous, spring_boundaries,
+       friction, residual);
+  }
+
+  double held() const { return kinetic + strain + contact; }
+  double work() const {
+    return gravity + point_loads + pressure + targets + fixed_points + viscous + spring_boundaries + friction;
+  }
+};
+
+// Every term by name (the Lua names: m:energy() and the monitor fields
+// "energy_<name>"), in the order above.
+struct EnergyTermName {
+  const char* name;
+  double EnergyTerms::*term;
+};
+inline constexpr EnergyTermName kEnergyTerms[] = {
+    {"kinetic", &EnergyTerms::kinetic},         {"strain", &EnergyTerms::strain},
+    {"contact", &EnergyTerms::contact},         {"gravity", &EnergyTerms::gravity},
+    {"point_loads", &EnergyTerms::point_loads}, {"pressure", &EnergyTerms::pressure},
+    {"targets", &EnergyTerms::targets},         {"fixed_points", &EnergyTerms::fixed_points},
+    {"viscous", &EnergyTerms::viscous},         {"spring_boundaries", &EnergyTerms::spring_boundaries},
+    {"friction", &EnergyTerms::friction},       {"residual", &EnergyTerms::residual},
+};
+
+struct EnergyBudget {
+  EnergyTerms total;      // held now; work and residual since the first step
+  EnergyTerms last_step;  // held now; the last step's work and residual
+  bool started = false;   // held energy known (the first accounted step sets it)
+  template <class Archive>
+  void fields(Archive& ar) {
+    ar(total, last_step, started);
+  }
+};
+
+}  // namespace dda
