@@ -83,29 +83,25 @@ bool binary_mode(lua_State* L, int idx) {
   return std::strchr(mode, 't') == nullptr;
 }
 
-// load(chunk [, chunkname [, mode [, env]]]) with mode forced to "t".
-int text_load(lua_State* L) {
-  if (binary_mode(L, 3)) return luaL_error(L, "load: %s", kBinaryRefused);
-  if (lua_gettop(L) < 3) lua_settop(L, 3);
+// Calls the saved library function (the upvalue) with its mode argument, at
+// position mode_arg, forced to "t"; a mode that asks for binary chunks is an
+// error naming `what`.
+int call_in_text_mode(lua_State* L, int mode_arg, const char* what) {
+  if (binary_mode(L, mode_arg)) return luaL_error(L, "%s: %s", what, kBinaryRefused);
+  if (lua_gettop(L) < mode_arg) lua_settop(L, mode_arg);
   lua_pushliteral(L, "t");
-  lua_replace(L, 3);
+  lua_replace(L, mode_arg);
   lua_pushvalue(L, lua_upvalueindex(1));
   lua_insert(L, 1);
   lua_call(L, lua_gettop(L) - 1, LUA_MULTRET);
   return lua_gettop(L);
 }
 
+// load(chunk [, chunkname [, mode [, env]]]) with mode forced to "t".
+int text_load(lua_State* L) { return call_in_text_mode(L, 3, "load"); }
+
 // loadfile([filename [, mode [, env]]]) with mode forced to "t".
-int text_loadfile(lua_State* L) {
-  if (binary_mode(L, 2)) return luaL_error(L, "loadfile: %s", kBinaryRefused);
-  if (lua_gettop(L) < 2) lua_settop(L, 2);
-  lua_pushliteral(L, "t");
-  lua_replace(L, 2);
-  lua_pushvalue(L, lua_upvalueindex(1));
-  lua_insert(L, 1);
-  lua_call(L, lua_gettop(L) - 1, LUA_MULTRET);
-  return lua_gettop(L);
-}
+int text_loadfile(lua_State* L) { return call_in_text_mode(L, 2, "loadfile"); }
 
 // dofile(filename): as Lua's, text only, and a file that cannot be loaded is
 // an error at the calling line.
