@@ -32,7 +32,9 @@ FreeFieldColumn::FreeFieldColumn(double y0, std::vector<Segment> segments, doubl
 }
 
 // (2M/Δt²)·d + K·(u + d) + z·v1 = (2M/Δt)·v0 + z·2·v_in at the base node,
-// v1 = velocity_factor·d − carried: a tridiagonal system (Thomas algorithm).
+// v1 = 2d/Δt − gg·v0: Shi's scheme whatever the model's integrator (a
+// second-order column is not written yet; docs/seismic.md says so), as a
+// tridiagonal system (Thomas algorithm).
 void FreeFieldColumn::advance_component(const std::vector<double>& k, double z, double v_in, const TimeScheme& scheme,
                                         const std::vector<double>& u, const std::vector<double>& v,
                                         std::vector<double>& u1, std::vector<double>& v1) const {
@@ -60,7 +62,7 @@ void FreeFieldColumn::advance_component(const std::vector<double>& k, double z, 
     rhs[s] += k[s] * stretch;
     rhs[s + 1] -= k[s] * stretch;
   }
-  diag[0] += z * scheme.velocity_factor();
+  diag[0] += z * (2 / dt);
   rhs[0] += z * (scheme.gg * v[0] + 2 * v_in);
   // Forward sweep, back substitution.
   for (std::size_t i = 1; i < n; ++i) {
@@ -75,7 +77,7 @@ void FreeFieldColumn::advance_component(const std::vector<double>& k, double z, 
   v1.resize(n);
   for (std::size_t i = 0; i < n; ++i) {
     u1[i] = u[i] + d[i];
-    v1[i] = scheme.velocity_factor() * d[i] - scheme.gg * v[i];
+    v1[i] = 2 / dt * d[i] - scheme.gg * v[i];
   }
 }
 
