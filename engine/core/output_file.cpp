@@ -35,12 +35,12 @@ bool write_all(int fd, std::string_view bytes) {
 
 }  // namespace
 
-void write_file_atomically(const std::filesystem::path& path, std::string_view bytes) {
+void write_file_atomically(const std::filesystem::path& path, std::string_view bytes, Durability durability) {
   std::filesystem::path part = path;
   part += ".part";
   const int fd = ::open(part.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0666);
   if (fd < 0) cannot_write(path, std::strerror(errno));
-  const bool written = write_all(fd, bytes);
+  const bool written = write_all(fd, bytes) && (durability == Durability::Renamed || ::fsync(fd) == 0);
   const int write_err = errno;
   const bool closed = ::close(fd) == 0;
   const int close_err = errno;
@@ -53,6 +53,14 @@ void write_file_atomically(const std::filesystem::path& path, std::string_view b
   if (ec) {
     std::remove(part.c_str());
     cannot_write(path, ec.message());
+  }
+  if (durability == Durability::Synced) {
+    std::filesystem::path dir = path.parent_path();
+    if (dir.empty()) dir = ".";
+    if (const int d = ::open(dir.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC); d >= 0) {
+      ::fsync(d);
+      ::close(d);
+    }
   }
 }
 

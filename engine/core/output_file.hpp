@@ -23,8 +23,12 @@
 namespace dda {
 
 // Throws dda::Error "cannot write 'PATH': cause" on any failure (the old
-// file, if any, is left as it was).
-void write_file_atomically(const std::filesystem::path& path, std::string_view bytes);
+// file, if any, is left as it was). Durable: the file is synced before the
+// rename and its folder after it, so the new file also survives a crash of
+// the machine (checkpoints ask for it; frames and tables need not wait).
+enum class Durability { Renamed, Synced };
+void write_file_atomically(const std::filesystem::path& path, std::string_view bytes,
+                           Durability durability = Durability::Renamed);
 
 class AppendFile {
  public:

@@ -1,7 +1,5 @@
 #include "world/checkpoint.hpp"
 
-#include <fcntl.h>
-#include <unistd.h>
 #include <zlib.h>
 
 #include <array>
@@ -12,6 +10,7 @@
 
 #include "core/archive.hpp"
 #include "core/error.hpp"
+#include "core/output_file.hpp"
 #include "world/stepper.hpp"
 
 namespace dda {
@@ -102,43 +101,8 @@ Checkpoint checkpoint_from_bytes(std::string_view bytes, const std::string& what
   return c;
 }
 
-void write_file_durably(const std::filesystem::path& path, std::string_view bytes) {
-  std::filesystem::path part = path;
-  part += ".part";
-  auto fail = [&](int err) {
-    ::unlink(part.c_str());
-    throw Error(msg("cannot write '", path.string(), "': ", std::strerror(err)));
-  };
-  const int fd = ::open(part.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
-  if (fd < 0) throw Error(msg("cannot write '", path.string(), "': ", std::strerror(errno)));
-  for (std::size_t done = 0; done < bytes.size();) {
-    const ssize_t n = ::write(fd, bytes.data() + done, bytes.size() - done);
-    if (n < 0 && errno == EINTR) continue;
-    if (n <= 0) {
-      const int err = n < 0 ? errno : EIO;
-      ::close(fd);
-      fail(err);
-    }
-    done += static_cast<std::size_t>(n);
-  }
-  if (::fsync(fd) != 0) {
-    const int err = errno;
-    ::close(fd);
-    fail(err);
-  }
-  if (::close(fd) != 0) fail(errno);
-  if (::rename(part.c_str(), path.c_str()) != 0) fail(errno);
-  // The rename itself survives a crash once the folder is synced too.
-  std::filesystem::path dir = path.parent_path();
-  if (dir.empty()) dir = ".";
-  if (const int d = ::open(dir.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC); d >= 0) {
-    ::fsync(d);
-    ::close(d);
-  }
-}
-
 void save_checkpoint(const World& world, const std::filesystem::path& path, std::string_view extra) {
-  write_file_durably(path, checkpoint_bytes(world, extra));
+  write_file_atomically(path, checkpoint_bytes(world, extra), Durability::Synced);
 }
 
 Checkpoint load_checkpoint(const std::filesystem::path& path) {

@@ -50,9 +50,4 @@ Checkpoint checkpoint_from_bytes(std::string_view bytes, const std::string& what
 void save_checkpoint(const World& world, const std::filesystem::path& path, std::string_view extra = {});
 Checkpoint load_checkpoint(const std::filesystem::path& path);
 
-// Writes `bytes` to `path` atomically (path.part, every write checked,
-// fsync, rename, fsync of the folder). Throws dda::Error "cannot write
-// 'PATH': cause"; the old file, if any, is left as it was.
-void write_file_durably(const std::filesystem::path& path, std::string_view bytes);
-
 }  // namespace dda
