@@ -34,21 +34,56 @@ ContactKinematics contact_kinematics(const BlockPolygons& blocks, std::span<cons
 
 // Per-contact values that change during the open-close iteration of a step.
 struct ContactIterate {
-  double s0 = 0;            // shear offset in force (0 once the contact re-locks mid-step)
+  // Shear offset of the spring at the step start: the shear force the
+  // contact carried into the step over ks (keep_shear_references puts the
+  // reference point there), 0 for a contact open at the step start. Kept
+  // through the step, so that the shear force is continuous through every
+  // change of state (without shear memory: 0 once it closes or locks again).
+  double s0 = 0;
   double normal_force = 0;  // from the previous iteration: drives sliding friction
+  double shear = 0;         // shear ds at the last check (m)
 };
 
+// A contact's springs: normal on a closed contact, shear on a locked one.
 struct ContactSprings {
-  double kn = 0;         // g0
-  double ks = 0;         // shear_ratio × g0
-  double tolerance = 0;  // open-close hysteresis (m)
+  double kn = 0;  // g0
+  double ks = 0;  // shear_ratio × g0
 };
 
-// Decide the contact's next state from the latest displacements. Returns true
-// when the state (or the intact flag, or the sliding direction) changed.
-// `dn`, `ds` are the current penetration and shear; `ds_step` the shear
-// displacement within this step (sliding direction).
+// A contact under a displacement d of the blocks (a solve's, or a warm
+// start's): its gap and shear, and the hysteresis of the decision.
+struct ContactMotion {
+  double dn = 0;           // penetration after the step (positive: the vertex is inside)
+  double ds = 0;           // shear from the reference point after the step
+  double ds_step = 0;      // shear motion in the step (the sliding direction)
+  double gap_slack = 0;    // the hysteresis of gap decisions (contact_slack of the step's motion)
+  double shear_slack = 0;  // the hysteresis of friction decisions (contact_slack of the relative motion)
+};
+
+// The open-close hysteresis of one contact in one check, in its own units: a
+// displacement, the tolerance's share of a motion of the step at the contact,
+// and at least round-off of its edge's length. The decision values come from
+// a solve whose error is relative to the step's displacements, so the band
+// follows the step: it is neither a length of the model (a contact in a model
+// 100× larger decides the same) nor a force through g0, and it vanishes for
+// blocks at rest, where friction must hold to its last newton. Two motions:
+//   * gap decisions (open, close, an intact joint's tension) take the step's
+//     largest block translation: the gap is a small difference of large
+//     motions (a settling wall's vertical joints, which carry next to
+//     nothing), and the solve's error is relative to the whole step's;
+//   * friction decisions (lock, slide, an intact joint's shear) take the
+//     vertex's motion relative to the edge: a band from the blocks' own
+//     motion, turned into a force by the stiff shear spring, would keep a
+//     block that rides on a moving one from sliding on it.
+double contact_slack(double tolerance, double motion, double edge_length);
+
+// Decide the contact's next state from its motion under the latest
+// displacements (Mohr-Coulomb on the springs' forces). Returns true when the
+// state (or the intact flag, or the sliding direction) changed. With
+// shear_memory the shear force is continuous through every change of state
+// (ContactIterate::s0); without, Shi's law: a contact that closes or locks
+// again does so unloaded at its position at the step start.
 bool update_contact_state(Contact& c, ContactIterate& it, const JointMaterial& joint, double tan_phi,
-                          const ContactSprings& k, double dn, double ds, double ds_step);
+                          const ContactSprings& k, const ContactMotion& m, bool shear_memory);
 
 }  // namespace dda

@@ -70,7 +70,17 @@ const ControlSpec kControls[] = {
         "open-close iterations before Δt is cut and the step redone"),
     number(
         "contact_tolerance", [](Controls& c) -> double& { return c.contact_tolerance; }, kZeroOrPositive,
-        "open-close hysteresis, fraction of half the model height"),
+        "open-close hysteresis of gap decisions and intact joints, fraction of half the model height (the"
+        " friction decisions of other contacts have a band of their own, a thousandth of the contact's own"
+        " motion in the step: docs/contacts.md)"),
+    flag(
+        "shear_memory", [](Controls& c) -> bool& { return c.shear_memory; },
+        "a contact's shear force is continuous through its changes of state: a sliding contact keeps its "
+        "friction in its shear spring when it locks again, a locked one its spring force while it slides "
+        "and locks again within a step (docs/contacts.md). `false`: Shi's law, in which a contact that "
+        "locks again does so unloaded at its position at the step's start, and a block that must stay on "
+        "a slope creeps down it a spring stretch at a time; the paper's scripts use it to reproduce the "
+        "paper's DDA"),
     number(
         "contact_range", [](Controls& c) -> double& { return c.contact_range; }, kZeroOrPositive,
         "m: blocks closer than this at the start of a step are in contact; a step in which a vertex moves"

@@ -27,13 +27,20 @@ struct Controls {
   double gg = 1;             // dynamic parameter: share of velocity carried into the next step
   double shear_ratio = 0.4;  // shear spring = shear_ratio × g0 (Shi's 2/5)
   int open_close_limit = 6;  // open-close iterations before Δt is cut and the step redone
-  // Open-close hysteresis, as a fraction of half the model height: a closed
-  // contact opens once separated by more than this, an open one closes once
-  // penetrated by more; a locked contact slides once its shear force exceeds
-  // its strength by the shear spring times this. Without it, contacts that
-  // carry next to no force (the Poisson-loaded vertical joints of a wall)
-  // flip state on round-off and the iteration never settles.
+  // Open-close hysteresis of gap decisions and intact joints, as a fraction
+  // of half the model height: a closed contact opens once separated by more
+  // than this, an open one closes once penetrated by more; an intact joint
+  // fails once its shear force exceeds its strength by the shear spring
+  // times this. Without it, contacts that carry next to no force (the
+  // Poisson-loaded vertical joints of a wall) flip state on round-off and the
+  // iteration never settles. (Friction decisions of contacts that are not
+  // intact joints have their own band, in the contact's own units:
+  // contact/contact_law.hpp, contact_slack.)
   double contact_tolerance = 1e-9;
+  // A contact's shear force is continuous through its changes of state
+  // (contact/contact_law.hpp); false: Shi's law, a contact locks again
+  // unloaded (the paper's DDA, for its figures).
+  bool shear_memory = true;
   double contact_range = 0;         // m; 0 → automatic (contact/contact_detection.hpp)
   double fixed_point_factor = 100;  // fixed-point spring = factor × g0
   Vec2 gravity = Vec2::Zero();      // m/s²

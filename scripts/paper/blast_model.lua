@@ -20,7 +20,7 @@ local blast_model = {}
 
 blast_model.rock = { density = 2650, E = 74e9, nu = 0.2 }
 blast_model.joint = { friction = 25, cohesion = 2e6, tension = 0 }
-blast_model.controls = { plane = "strain", g0 = 100e9, g1 = 1e-5, g2 = 0.005, gg = 1 }
+blast_model.controls = { plane = "strain", g0 = 100e9, g1 = 1e-5, g2 = 0.005, gg = 1, shear_memory = false }
 blast_model.chamber = { -4, -2, 4, 2 }   -- m: 8 m wide, 4 m high, roof at y = 2
 blast_model.charge_kg = 606               -- TNT of the field test (Eq. 23 uses R/Q^(1/3))
 
