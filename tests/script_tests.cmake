@@ -85,3 +85,22 @@ add_test(NAME install.run_installed
          COMMAND bash -c "rm -rf \"$1\" && \"$3\" --install \"$2\" --prefix \"$1/prefix\" > /dev/null && mkdir -p \"$1/work\" && cd \"$1/work\" && \"$1/prefix/bin/dda\" run free_fall.lua --quiet --set t_end=0.05 --out out > log.txt && grep -q 'largest relative error' log.txt && test -s out/free_fall.csv" _
                  ${CMAKE_BINARY_DIR}/install-test ${CMAKE_BINARY_DIR} ${CMAKE_COMMAND})
 set_tests_properties(install.run_installed PROPERTIES LABELS scripts TIMEOUT 120)
+
+# The state hashes of the benchmark scenes (scripts/bench/state_hashes.lua)
+# under each contact law equal bench/state_hashes.txt ("holding", the
+# default) and bench/state_hashes_shi.txt ("shi": the engine's results before
+# the holding law, bit for bit), comment lines aside.
+foreach(law holding shi)
+  if(law STREQUAL "holding")
+    set(name script.state_hashes)
+    set(expected bench/state_hashes.txt)
+  else()
+    set(name script.state_hashes_${law})
+    set(expected bench/state_hashes_${law}.txt)
+  endif()
+  add_test(NAME ${name}
+           COMMAND bash -c "diff <(grep -v '^#' \"$2\") <(\"$1\" run scripts/bench/state_hashes.lua --quiet --out \"$3\" --set contact_law=$4 | grep -v '^progress')"
+                   _ $<TARGET_FILE:dda> ${expected} ${DDA_SCRIPT_TEST_OUT}/${name} ${law}
+           WORKING_DIRECTORY ${PROJECT_SOURCE_DIR})
+  set_tests_properties(${name} PROPERTIES LABELS scripts TIMEOUT 120)
+endforeach()

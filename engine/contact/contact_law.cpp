@@ -59,7 +59,8 @@ double contact_slack(double tolerance, double motion, double edge_length) {
 }
 
 bool update_contact_state(Contact& c, ContactIterate& it, const JointMaterial& joint, double tan_phi,
-                          const ContactSprings& k, const ContactMotion& m, bool shear_memory) {
+                          const ContactSprings& k, const ContactMotion& m, ContactLaw law) {
+  const bool holding = law == ContactLaw::Holding;
   const ContactState old_state = c.state;
   const bool old_intact = c.intact;
   const std::int8_t old_sign = c.slide_sign;
@@ -72,9 +73,9 @@ bool update_contact_state(Contact& c, ContactIterate& it, const JointMaterial& j
   };
 
   // A joint without cohesion or tensile strength holds nothing an unbonded
-  // contact does not: it is decided as one (its friction in the contact's
-  // own units, not the intact joints' model-wide band).
-  if (c.intact && joint.cohesion == 0 && joint.tensile_strength == 0) c.intact = false;
+  // contact does not: the holding law decides it as one (its friction in the
+  // contact's own units, not the intact joints' model-wide band).
+  if (holding && c.intact && joint.cohesion == 0 && joint.tensile_strength == 0) c.intact = false;
   if (c.intact) {
     // An intact joint holds tension up to σt·L and shear up to c·L + N·tanφ,
     // with the same hysteresis margin as the open-close decision below (at
@@ -98,7 +99,7 @@ bool update_contact_state(Contact& c, ContactIterate& it, const JointMaterial& j
       case ContactState::Open:
         // Just closed: lock first; the next iteration checks friction.
         c.state = ContactState::Locked;
-        if (!shear_memory) it.s0 = 0;
+        if (!holding) it.s0 = 0;
         break;
       case ContactState::Locked:
         if (std::abs(shear) > std::max(0.0, normal) * tan_phi + k.ks * m.shear_slack) slide_towards(ds);
@@ -109,12 +110,12 @@ bool update_contact_state(Contact& c, ContactIterate& it, const JointMaterial& j
         // (a return mapping), so a contact at its friction limit does not
         // alternate between a locked solve whose spring exceeds N·tanφ and a
         // sliding one whose motion, measured from the step start, reverses
-        // while its spring unloads. Without shear memory (Shi's law) or a
-        // shear spring: once the motion reverses, re-locked unloaded.
-        if (shear_memory && k.ks > 0 ? k.ks * ds * c.slide_sign < std::max(0.0, normal) * tan_phi - k.ks * m.shear_slack
-                                     : m.ds_step * c.slide_sign < -m.shear_slack) {
+        // while its spring unloads. Shi's law (or no shear spring): once the
+        // motion reverses, re-locked unloaded.
+        if (holding && k.ks > 0 ? k.ks * ds * c.slide_sign < std::max(0.0, normal) * tan_phi - k.ks * m.shear_slack
+                                : m.ds_step * c.slide_sign < -m.shear_slack) {
           c.state = ContactState::Locked;
-          if (!shear_memory) it.s0 = 0;
+          if (!holding) it.s0 = 0;
         }
         break;
     }

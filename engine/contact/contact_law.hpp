@@ -32,6 +32,20 @@ struct ContactKinematics : ContactGradients, ContactOffsets {};
 
 ContactKinematics contact_kinematics(const BlockPolygons& blocks, std::span<const Vec2> centroids, const Contact& c);
 
+// The contact law (the control contact_law; docs/contacts.md):
+//   * Holding: a contact's shear force is continuous through its changes of
+//     state (shear memory), a sliding contact locks again by a return mapping,
+//     friction agrees with the normal force of the accepted solve, friction
+//     decisions have a band in the contact's own units, and joints without
+//     cohesion or tension are unbonded from the start: friction holds a block
+//     that must hold, at every step size;
+//   * Shi: Shi's (1988) law, as the engine had it before: a contact that
+//     closes or locks again does so unloaded, friction uses the normal force
+//     of the solve before, every decision has the model-wide band. A block
+//     that must stay on a slope creeps down it. Bit for bit the engine's
+//     earlier results (the paper's figures, docs/validation.md).
+enum class ContactLaw { Holding, Shi };
+
 // Per-contact values that change during the open-close iteration of a step.
 struct ContactIterate {
   // Shear offset of the spring at the step start: the shear force the
@@ -79,11 +93,11 @@ double contact_slack(double tolerance, double motion, double edge_length);
 
 // Decide the contact's next state from its motion under the latest
 // displacements (Mohr-Coulomb on the springs' forces). Returns true when the
-// state (or the intact flag, or the sliding direction) changed. With
-// shear_memory the shear force is continuous through every change of state
-// (ContactIterate::s0); without, Shi's law: a contact that closes or locks
-// again does so unloaded at its position at the step start.
+// state (or the intact flag, or the sliding direction) changed. Under the
+// holding law the shear force is continuous through every change of state
+// (ContactIterate::s0); under Shi's, a contact that closes or locks again
+// does so unloaded at its position at the step start.
 bool update_contact_state(Contact& c, ContactIterate& it, const JointMaterial& joint, double tan_phi,
-                          const ContactSprings& k, const ContactMotion& m, bool shear_memory);
+                          const ContactSprings& k, const ContactMotion& m, ContactLaw law);
 
 }  // namespace dda

@@ -47,16 +47,17 @@ constexpr int kMaxFrictionPasses = 1;
 // A contact's motion under the displacement d of a solve (or of a warm
 // start), from the shear offset s0 in force.
 ContactMotion contact_motion(const ContactGradients& k, const ContactOffsets& o, const VecX& d, const Contact& c,
-                             double s0, double tolerance, double step_motion) {
+                             double s0, const ContactParameters& p, double step_motion) {
   const auto dv = d.segment<6>(6 * c.vblock);
   const auto de = d.segment<6>(6 * c.eblock);
   ContactMotion m;
-  const double dn_step = k.en_v.dot(dv) + k.en_e.dot(de);
+  m.dn = o.d0 + k.en_v.dot(dv) + k.en_e.dot(de);  // summed from d0 on: every law's gap to the last bit
   m.ds_step = k.es_v.dot(dv) + k.es_e.dot(de);
-  m.dn = o.d0 + dn_step;
   m.ds = s0 + m.ds_step;
-  m.gap_slack = tolerance;
-  m.shear_slack = contact_slack(kFrictionTolerance, step_motion, o.edge_length);
+  m.gap_slack = p.tolerance;
+  // Shi's law decides friction with the model-wide band of the gap decisions.
+  m.shear_slack =
+      p.law == ContactLaw::Shi ? p.tolerance : contact_slack(kFrictionTolerance, step_motion, o.edge_length);
   return m;
 }
 
@@ -108,10 +109,9 @@ void predict_contact_states(std::span<Contact> contacts, const ContactLinearisat
         if (c.intact) return;
         const ContactIterationState before = iteration_state(c);
         const ContactIterate iterate = s.iterate[i];
-        const ContactMotion m =
-            contact_motion(lin.gradients[i], lin.offsets[i], d, c, iterate.s0, p.tolerance, step_motion);
+        const ContactMotion m = contact_motion(lin.gradients[i], lin.offsets[i], d, c, iterate.s0, p, step_motion);
         update_contact_state(c, s.iterate[i], p.joints[c.joint], p.tan_friction[c.joint], contact_springs(c, p), m,
-                             p.shear_memory);
+                             p.law);
         if (before.state != ContactState::Open && c.state == ContactState::Open) {
           set_iteration_state(c, before);
           s.iterate[i] = iterate;
@@ -130,18 +130,18 @@ bool check_contact_states(std::span<Contact> contacts, const ContactLinearisatio
   const int any_changed = parallel_max<int>(nc, 0, [&](std::size_t i) {
     Contact& c = contacts[i];
     const ContactSprings springs = contact_springs(c, p);
-    const ContactMotion m =
-        contact_motion(lin.gradients[i], lin.offsets[i], d, c, s.iterate[i].s0, p.tolerance, step_motion);
+    const ContactMotion m = contact_motion(lin.gradients[i], lin.offsets[i], d, c, s.iterate[i].s0, p, step_motion);
     const double tan_phi = p.tan_friction[c.joint];
     const ContactState before = c.state;
     const double friction_normal = s.iterate[i].normal_force;  // the N this solve's friction used
-    bool changed = update_contact_state(c, s.iterate[i], p.joints[c.joint], tan_phi, springs, m, p.shear_memory);
+    bool changed = update_contact_state(c, s.iterate[i], p.joints[c.joint], tan_phi, springs, m, p.law);
     // Friction consistent with the normal force of the accepted solution: a
     // contact that slid through the solve with the N of the solve before (or
     // of the prediction) iterates again until that N holds, to kConsistency
     // of N (and round-off, in force).
     bool friction_moved = false;
-    if (!changed && before == ContactState::Sliding && c.state == ContactState::Sliding) {
+    if (p.law == ContactLaw::Holding && !changed && before == ContactState::Sliding &&
+        c.state == ContactState::Sliding) {
       const double n = s.iterate[i].normal_force;
       friction_moved = std::abs(n - friction_normal) >
                        kConsistency * std::abs(n) + springs.kn * contact_slack(0, 0, lin.offsets[i].edge_length);
@@ -149,8 +149,12 @@ bool check_contact_states(std::span<Contact> contacts, const ContactLinearisatio
     s.changed[i] = changed || friction_moved;
     c.penetration = m.dn;
     c.normal_force = s.iterate[i].normal_force;
+    // (Shi's law kept the engine's earlier sign of the sliding friction,
+    // against the spring's: its results, state hashes included, are the
+    // earlier ones bit for bit.)
+    const double friction_sign = p.law == ContactLaw::Shi ? -c.slide_sign : c.slide_sign;
     c.shear_force = c.state == ContactState::Locked    ? springs.ks * m.ds
-                    : c.state == ContactState::Sliding ? c.slide_sign * std::max(0.0, c.normal_force) * tan_phi
+                    : c.state == ContactState::Sliding ? friction_sign * std::max(0.0, c.normal_force) * tan_phi
                                                        : 0.0;
     if (friction_moved) any_friction.store(true, std::memory_order_relaxed);
     return changed ? 2 : friction_moved ? 1 : 0;
@@ -171,6 +175,28 @@ double deepest_penetration(std::span<const Contact> contacts) {
   });
 }
 
+namespace {
+// Shi's law: a contact that ends the step locked keeps the point it locked at
+// (or takes its position at the step start, where it locked again unloaded);
+// others drop it.
+void keep_locked_references(std::span<Contact> contacts, const ContactLinearisation& lin, const OpenCloseState& s) {
+  parallel_for_each(
+      contacts.size(),
+      [&](std::size_t i) {
+        Contact& c = contacts[i];
+        if (c.state == ContactState::Locked) {
+          if (!c.ref_valid || s.iterate[i].s0 != lin.offsets[i].s0) {
+            c.ref_param = lin.offsets[i].param;
+            c.ref_valid = true;
+          }
+        } else {
+          c.ref_valid = false;
+        }
+      },
+      256);
+}
+}  // namespace
+
 // The reference point sits where the shear spring carries the contact's
 // shear force: a locked contact keeps the point it locked at (the iteration's
 // reference, moved only when it re-locked from the step start's offset), a
@@ -181,6 +207,10 @@ double deepest_penetration(std::span<const Contact> contacts) {
 // displacement S/ks at every re-lock and ratchet down the slope.
 void keep_shear_references(std::span<Contact> contacts, const ContactLinearisation& lin, const OpenCloseState& s,
                            const ContactParameters& p) {
+  if (p.law == ContactLaw::Shi) {
+    keep_locked_references(contacts, lin, s);
+    return;
+  }
   parallel_for_each(
       contacts.size(),
       [&](std::size_t i) {
@@ -188,12 +218,11 @@ void keep_shear_references(std::span<Contact> contacts, const ContactLinearisati
         const ContactOffsets& o = lin.offsets[i];
         const ContactIterate& it = s.iterate[i];
         const double ks = contact_springs(c, p).ks;
-        if (c.state == ContactState::Open || !(ks > 0) || (!p.shear_memory && c.state == ContactState::Sliding)) {
+        if (c.state == ContactState::Open || !(ks > 0)) {
           c.ref_valid = false;
           return;
         }
-        // Where it.shear was measured from (the vertex's start position when
-        // it locked again without shear memory).
+        // Where it.shear was measured from.
         const double reference = c.ref_valid && it.s0 == o.s0 ? c.ref_param : o.param - it.s0 / o.edge_length;
         if (c.state == ContactState::Locked) {
           c.ref_param = reference;

@@ -20,7 +20,7 @@ struct ContactParameters {
   double tolerance = 0;    // open-close hysteresis of gap decisions (m)
   std::span<const JointMaterial> joints;
   std::span<const double> tan_friction;  // tan φ per joint material
-  bool shear_memory = true;              // update_contact_state
+  ContactLaw law = ContactLaw::Holding;  // update_contact_state
 };
 
 // A contact's springs: g0 and shear_ratio·g0, scaled by its spring scale.

@@ -22,6 +22,7 @@ constexpr ControlRange kZeroAutomaticOrPositive{0, kInf, false, false, "must be 
 constexpr ControlRange kZeroEveryCoreOrPositive{0, kInf, false, false, "must be zero (every core) or positive"};
 
 constexpr const char* kPlaneNames[] = {"stress", "strain"};                            // PlaneMode order
+constexpr const char* kContactLawNames[] = {"holding", "shi"};                         // ContactLaw order
 constexpr const char* kPreconditionerNames[] = {"auto", "block_jacobi", "multigrid"};  // Preconditioning order
 
 constexpr ControlSpec number(const char* name, double& (*field)(Controls&), ControlRange range, const char* doc,
@@ -70,17 +71,20 @@ const ControlSpec kControls[] = {
         "open-close iterations before Δt is cut and the step redone"),
     number(
         "contact_tolerance", [](Controls& c) -> double& { return c.contact_tolerance; }, kZeroOrPositive,
-        "open-close hysteresis of gap decisions and intact joints, fraction of half the model height (the"
-        " friction decisions of other contacts have a band of their own, a thousandth of the contact's own"
-        " motion in the step: docs/contacts.md)"),
-    flag(
-        "shear_memory", [](Controls& c) -> bool& { return c.shear_memory; },
-        "a contact's shear force is continuous through its changes of state: a sliding contact keeps its "
-        "friction in its shear spring when it locks again, a locked one its spring force while it slides "
-        "and locks again within a step (docs/contacts.md). `false`: Shi's law, in which a contact that "
-        "locks again does so unloaded at its position at the step's start, and a block that must stay on "
-        "a slope creeps down it a spring stretch at a time; the paper's scripts use it to reproduce the "
-        "paper's DDA"),
+        "open-close hysteresis, fraction of half the model height: of every decision under "
+        "`contact_law = \"shi\"`; under `\"holding\"` of gap decisions and intact joints only (the friction "
+        "decisions of other contacts have a band of their own, a hundredth of the step's largest block "
+        "translation: docs/contacts.md)"),
+    choice(
+        "contact_law", kContactLawNames, [](const Controls& c) { return static_cast<int>(c.contact_law); },
+        [](Controls& c, int i) { c.contact_law = static_cast<ContactLaw>(i); },
+        "`\"holding\"`: a contact's shear force is continuous through its changes of state (a contact "
+        "that locks again keeps the force its spring carried), friction agrees with the normal force of "
+        "the accepted solve, friction decisions have a band of their own in the contact's motion, and joints "
+        "without cohesion or tension are unbonded from the start: a block that must hold on a slope holds at "
+        "every Δt. `\"shi\"`: Shi's law as the engine had it before, bit for bit: a contact that closes or "
+        "locks again does so unloaded, and a block that must stay on a slope creeps down it; the paper's "
+        "scripts pin it to reproduce the paper's figures (docs/contacts.md)"),
     number(
         "contact_range", [](Controls& c) -> double& { return c.contact_range; }, kZeroOrPositive,
         "m: blocks closer than this at the start of a step are in contact; a step in which a vertex moves"

@@ -13,6 +13,7 @@
 #include <span>
 #include <string>
 
+#include "contact/contact_law.hpp"
 #include "core/material.hpp"
 #include "core/types.hpp"
 #include "solver/solver_settings.hpp"
@@ -33,14 +34,15 @@ struct Controls {
   // fails once its shear force exceeds its strength by the shear spring
   // times this. Without it, contacts that carry next to no force (the
   // Poisson-loaded vertical joints of a wall) flip state on round-off and the
-  // iteration never settles. (Friction decisions of contacts that are not
-  // intact joints have their own band, in the contact's own units:
-  // contact/contact_law.hpp, contact_slack.)
+  // iteration never settles. (Under ContactLaw::Shi, friction decisions take
+  // it too; under Holding those of contacts that are not intact joints have
+  // their own band, in the step's units: contact/contact_law.hpp,
+  // contact_slack.)
   double contact_tolerance = 1e-9;
-  // A contact's shear force is continuous through its changes of state
-  // (contact/contact_law.hpp); false: Shi's law, a contact locks again
-  // unloaded (the paper's DDA, for its figures).
-  bool shear_memory = true;
+  // The contact law (contact/contact_law.hpp): Holding, in which friction
+  // holds; Shi, the law of Shi (1988) as the engine had it before, bit for
+  // bit (the paper's scripts, for its figures).
+  ContactLaw contact_law = ContactLaw::Holding;
   double contact_range = 0;         // m; 0 → automatic (contact/contact_detection.hpp)
   double fixed_point_factor = 100;  // fixed-point spring = factor × g0
   Vec2 gravity = Vec2::Zero();      // m/s²
