@@ -52,7 +52,7 @@ struct ContactIterate {
   // contact carried into the step over ks (keep_shear_references puts the
   // reference point there), 0 for a contact open at the step start. Kept
   // through the step, so that the shear force is continuous through every
-  // change of state (without shear memory: 0 once it closes or locks again).
+  // change of state (under Shi's law: 0 once it closes or locks again).
   double s0 = 0;
   double normal_force = 0;  // from the previous iteration: drives sliding friction
   double shear = 0;         // shear ds at the last check (m)
@@ -70,25 +70,21 @@ struct ContactMotion {
   double dn = 0;           // penetration after the step (positive: the vertex is inside)
   double ds = 0;           // shear from the reference point after the step
   double ds_step = 0;      // shear motion in the step (the sliding direction)
-  double gap_slack = 0;    // the hysteresis of gap decisions (contact_slack of the step's motion)
-  double shear_slack = 0;  // the hysteresis of friction decisions (contact_slack of the relative motion)
+  double gap_slack = 0;    // the hysteresis of gap decisions and intact joints (m): the model-wide band
+  double shear_slack = 0;  // the hysteresis of friction decisions (m): contact_slack under the holding
+                           // law, the model-wide band under Shi's
 };
 
-// The open-close hysteresis of one contact in one check, in its own units: a
-// displacement, the tolerance's share of a motion of the step at the contact,
-// and at least round-off of its edge's length. The decision values come from
-// a solve whose error is relative to the step's displacements, so the band
-// follows the step: it is neither a length of the model (a contact in a model
-// 100× larger decides the same) nor a force through g0, and it vanishes for
-// blocks at rest, where friction must hold to its last newton. Two motions:
-//   * gap decisions (open, close, an intact joint's tension) take the step's
-//     largest block translation: the gap is a small difference of large
-//     motions (a settling wall's vertical joints, which carry next to
-//     nothing), and the solve's error is relative to the whole step's;
-//   * friction decisions (lock, slide, an intact joint's shear) take the
-//     vertex's motion relative to the edge: a band from the blocks' own
-//     motion, turned into a force by the stiff shear spring, would keep a
-//     block that rides on a moving one from sliding on it.
+// The friction band of the holding law, in the step's own units: a
+// displacement, the tolerance's share of the step's largest block
+// translation, and at least round-off of the contact's edge's length. The
+// decision values come from a solve whose error is relative to the step's
+// displacements, so the band follows the step: it is neither a length of the
+// model (a contact in a model 100× larger decides the same) nor a force
+// through g0, and it vanishes for blocks at rest, where friction must hold to
+// its last newton. (The largest translation, not the contact's own relative
+// motion: a settling wall's vertical joints, which carry next to nothing,
+// slid and opened on the loose solves' error with that: docs/contacts.md.)
 double contact_slack(double tolerance, double motion, double edge_length);
 
 // Decide the contact's next state from its motion under the latest

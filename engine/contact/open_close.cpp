@@ -35,8 +35,8 @@ ContactSprings contact_springs(const Contact& c, const ContactParameters& p) {
 }
 
 namespace {
-// The hysteresis of friction decisions: this share of the contact's own
-// relative motion in the step (contact_slack).
+// The holding law's hysteresis of friction decisions: this share of the
+// step's largest block translation (contact_slack).
 constexpr double kFrictionTolerance = 1e-2;
 // Friction consistency (check_contact_states): the share of N to which the
 // normal force of a sliding contact's friction must agree with its solve's,
