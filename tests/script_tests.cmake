@@ -102,3 +102,21 @@ dda_run_test(paper.bar_time_step long 7200 paper/bar_time_step.lua --set check=t
 # The Fig. 8 bar's energy budget with the VBC closes under newmark (residual
 # under 1 % of the load's work; scripts/paper/vbc_energy_check.lua).
 dda_run_test(paper.vbc_energy paper 600 paper/vbc_energy_check.lua)
+# The state hashes of the benchmark scenes (scripts/bench/state_hashes.lua)
+# under each contact law equal bench/state_hashes.txt ("holding", the
+# default) and bench/state_hashes_shi.txt ("shi": the engine's results before
+# the holding law, bit for bit), comment lines aside.
+foreach(law holding shi)
+  if(law STREQUAL "holding")
+    set(name script.state_hashes)
+    set(expected bench/state_hashes.txt)
+  else()
+    set(name script.state_hashes_${law})
+    set(expected bench/state_hashes_${law}.txt)
+  endif()
+  add_test(NAME ${name}
+           COMMAND bash -c "diff <(grep -v '^#' \"$2\") <(\"$1\" run scripts/bench/state_hashes.lua --quiet --out \"$3\" --set contact_law=$4 | grep -v '^progress')"
+                   _ $<TARGET_FILE:dda> ${expected} ${DDA_SCRIPT_TEST_OUT}/${name} ${law}
+           WORKING_DIRECTORY ${PROJECT_SOURCE_DIR})
+  set_tests_properties(${name} PROPERTIES LABELS scripts TIMEOUT 120)
+endforeach()

@@ -31,8 +31,10 @@ struct Contact {
   // than 5 % of the shorter edge, whose springs ramp in with the overlap (see
   // narrow_phase.hpp).
   double scale = 1;
-  // Shear reference: the point on the edge (parameter 0..1) where the vertex
-  // locked; valid while locked.
+  // Shear reference: the point on the edge's line (parameter along it) at
+  // which the shear spring carries the contact's shear force (where a locked
+  // contact locked; behind a sliding vertex by its friction / ks); valid
+  // while closed.
   double ref_param = 0;
   bool ref_valid = false;
   // Sign of the last sliding direction along the edge (for friction).

@@ -53,11 +53,18 @@ ContactKinematics contact_kinematics(const BlockPolygons& blocks, std::span<cons
   return k;
 }
 
+double contact_slack(double tolerance, double motion, double edge_length) {
+  constexpr double kRoundOff = 1e-12;  // of the edge's length: positions carry ~1e-16 of the coordinates
+  return tolerance * motion + kRoundOff * edge_length;
+}
+
 bool update_contact_state(Contact& c, ContactIterate& it, const JointMaterial& joint, double tan_phi,
-                          const ContactSprings& k, double dn, double ds, double ds_step) {
+                          const ContactSprings& k, const ContactMotion& m, ContactLaw law) {
+  const bool holding = law == ContactLaw::Holding;
   const ContactState old_state = c.state;
   const bool old_intact = c.intact;
   const std::int8_t old_sign = c.slide_sign;
+  const double dn = m.dn, ds = m.ds;
   const double normal = k.kn * dn;  // compression positive
   const double shear = k.ks * ds;
   auto slide_towards = [&](double direction) {
@@ -65,14 +72,18 @@ bool update_contact_state(Contact& c, ContactIterate& it, const JointMaterial& j
     c.slide_sign = direction >= 0 ? 1 : -1;
   };
 
+  // A joint without cohesion or tensile strength holds nothing an unbonded
+  // contact does not: the holding law decides it as one (its friction in the
+  // contact's own units, not the intact joints' model-wide band).
+  if (holding && c.intact && joint.cohesion == 0 && joint.tensile_strength == 0) c.intact = false;
   if (c.intact) {
     // An intact joint holds tension up to σt·L and shear up to c·L + N·tanφ,
     // with the same hysteresis margin as the open-close decision below (at
     // σt = 0, round-off tension must not break a joint that carries nothing).
-    if (normal < -(joint.tensile_strength * c.length + k.kn * k.tolerance)) {
+    if (normal < -(joint.tensile_strength * c.length + k.kn * m.gap_slack)) {
       c.intact = false;
       c.state = ContactState::Open;
-    } else if (std::abs(shear) > joint.cohesion * c.length + normal * tan_phi + k.ks * k.tolerance) {
+    } else if (std::abs(shear) > joint.cohesion * c.length + normal * tan_phi + k.ks * m.gap_slack) {
       c.intact = false;
       if (dn < 0)
         c.state = ContactState::Open;
@@ -81,28 +92,36 @@ bool update_contact_state(Contact& c, ContactIterate& it, const JointMaterial& j
     } else {
       c.state = ContactState::Locked;
     }
-  } else if (old_state == ContactState::Open ? dn <= k.tolerance : dn < -k.tolerance) {
+  } else if (old_state == ContactState::Open ? dn <= m.gap_slack : dn < -m.gap_slack) {
     c.state = ContactState::Open;
   } else {
     switch (old_state) {
       case ContactState::Open:
         // Just closed: lock first; the next iteration checks friction.
         c.state = ContactState::Locked;
-        it.s0 = 0;
+        if (!holding) it.s0 = 0;
         break;
       case ContactState::Locked:
-        if (std::abs(shear) > std::max(0.0, normal) * tan_phi + k.ks * k.tolerance) slide_towards(ds);
+        if (std::abs(shear) > std::max(0.0, normal) * tan_phi + k.ks * m.shear_slack) slide_towards(ds);
         break;
       case ContactState::Sliding:
-        // Motion reversed against the assumed sliding direction: lock again.
-        if (ds_step * c.slide_sign < -k.tolerance) {
+        // Lock again once the shear spring, put back, would carry less than
+        // the friction: the same test as the one above from the other side
+        // (a return mapping), so a contact at its friction limit does not
+        // alternate between a locked solve whose spring exceeds N·tanφ and a
+        // sliding one whose motion, measured from the step start, reverses
+        // while its spring unloads. Shi's law (or no shear spring): once the
+        // motion reverses, re-locked unloaded.
+        if (holding && k.ks > 0 ? k.ks * ds * c.slide_sign < std::max(0.0, normal) * tan_phi - k.ks * m.shear_slack
+                                : m.ds_step * c.slide_sign < -m.shear_slack) {
           c.state = ContactState::Locked;
-          it.s0 = 0;
+          if (!holding) it.s0 = 0;
         }
         break;
     }
   }
   it.normal_force = c.state == ContactState::Open ? 0.0 : normal;
+  it.shear = ds;
   return c.state != old_state || c.intact != old_intact ||
          (c.state == ContactState::Sliding && c.slide_sign != old_sign);
 }

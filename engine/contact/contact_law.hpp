@@ -32,23 +32,68 @@ struct ContactKinematics : ContactGradients, ContactOffsets {};
 
 ContactKinematics contact_kinematics(const BlockPolygons& blocks, std::span<const Vec2> centroids, const Contact& c);
 
+// The contact law (the control contact_law; docs/contacts.md):
+//   * Holding: a contact's shear force is continuous through its changes of
+//     state (shear memory), a sliding contact locks again by a return mapping,
+//     friction agrees with the normal force of the accepted solve, friction
+//     decisions have a band in the contact's own units, and joints without
+//     cohesion or tension are unbonded from the start: friction holds a block
+//     that must hold, at every step size;
+//   * Shi: Shi's (1988) law, as the engine had it before: a contact that
+//     closes or locks again does so unloaded, friction uses the normal force
+//     of the solve before, every decision has the model-wide band. A block
+//     that must stay on a slope creeps down it. Bit for bit the engine's
+//     earlier results (the paper's figures, docs/validation.md).
+enum class ContactLaw { Holding, Shi };
+
 // Per-contact values that change during the open-close iteration of a step.
 struct ContactIterate {
-  double s0 = 0;            // shear offset in force (0 once the contact re-locks mid-step)
+  // Shear offset of the spring at the step start: the shear force the
+  // contact carried into the step over ks (keep_shear_references puts the
+  // reference point there), 0 for a contact open at the step start. Kept
+  // through the step, so that the shear force is continuous through every
+  // change of state (under Shi's law: 0 once it closes or locks again).
+  double s0 = 0;
   double normal_force = 0;  // from the previous iteration: drives sliding friction
+  double shear = 0;         // shear ds at the last check (m)
 };
 
+// A contact's springs: normal on a closed contact, shear on a locked one.
 struct ContactSprings {
-  double kn = 0;         // g0
-  double ks = 0;         // shear_ratio × g0
-  double tolerance = 0;  // open-close hysteresis (m)
+  double kn = 0;  // g0
+  double ks = 0;  // shear_ratio × g0
 };
 
-// Decide the contact's next state from the latest displacements. Returns true
-// when the state (or the intact flag, or the sliding direction) changed.
-// `dn`, `ds` are the current penetration and shear; `ds_step` the shear
-// displacement within this step (sliding direction).
+// A contact under a displacement d of the blocks (a solve's, or a warm
+// start's): its gap and shear, and the hysteresis of the decision.
+struct ContactMotion {
+  double dn = 0;           // penetration after the step (positive: the vertex is inside)
+  double ds = 0;           // shear from the reference point after the step
+  double ds_step = 0;      // shear motion in the step (the sliding direction)
+  double gap_slack = 0;    // the hysteresis of gap decisions and intact joints (m): the model-wide band
+  double shear_slack = 0;  // the hysteresis of friction decisions (m): contact_slack under the holding
+                           // law, the model-wide band under Shi's
+};
+
+// The friction band of the holding law, in the step's own units: a
+// displacement, the tolerance's share of the step's largest block
+// translation, and at least round-off of the contact's edge's length. The
+// decision values come from a solve whose error is relative to the step's
+// displacements, so the band follows the step: it is neither a length of the
+// model (a contact in a model 100× larger decides the same) nor a force
+// through g0, and it vanishes for blocks at rest, where friction must hold to
+// its last newton. (The largest translation, not the contact's own relative
+// motion: a settling wall's vertical joints, which carry next to nothing,
+// slid and opened on the loose solves' error with that: docs/contacts.md.)
+double contact_slack(double tolerance, double motion, double edge_length);
+
+// Decide the contact's next state from its motion under the latest
+// displacements (Mohr-Coulomb on the springs' forces). Returns true when the
+// state (or the intact flag, or the sliding direction) changed. Under the
+// holding law the shear force is continuous through every change of state
+// (ContactIterate::s0); under Shi's, a contact that closes or locks again
+// does so unloaded at its position at the step start.
 bool update_contact_state(Contact& c, ContactIterate& it, const JointMaterial& joint, double tan_phi,
-                          const ContactSprings& k, double dn, double ds, double ds_step);
+                          const ContactSprings& k, const ContactMotion& m, ContactLaw law);
 
 }  // namespace dda

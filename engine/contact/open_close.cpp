@@ -1,6 +1,8 @@
 #include "contact/open_close.hpp"
 
 #include <algorithm>
+#include <atomic>
+#include <cmath>
 
 #include "core/parallel.hpp"
 
@@ -19,33 +21,54 @@ void restore_contact_states(std::span<Contact> contacts, const OpenCloseState& s
 
 void start_open_close(std::span<const Contact> contacts, const ContactLinearisation& lin, OpenCloseState& s) {
   s.iterate.resize(contacts.size());
+  s.friction_passes = 0;
   parallel_for_each(
       contacts.size(),
       [&](std::size_t i) {
-        s.iterate[i] = {lin.offsets[i].s0, contacts[i].normal_force};
+        s.iterate[i] = {lin.offsets[i].s0, contacts[i].normal_force, lin.offsets[i].s0};
       },
       1024);
 }
 
-namespace {
-// A contact's normal gap and shear motion under the displacement d of a solve
-// (or of a warm start).
-struct ContactMotion {
-  double dn;       // gap after the step (penetration positive)
-  double ds_step;  // shear motion in the step
-};
-
-ContactMotion contact_motion(const ContactGradients& k, const ContactOffsets& o, const VecX& d, const Contact& c) {
-  const auto dv = d.segment<6>(6 * c.vblock);
-  const auto de = d.segment<6>(6 * c.eblock);
-  return {o.d0 + k.en_v.dot(dv) + k.en_e.dot(de), k.es_v.dot(dv) + k.es_e.dot(de)};
-}
-
-// A contact's springs (ContactParameters::springs), scaled.
 ContactSprings contact_springs(const Contact& c, const ContactParameters& p) {
   const ContactParameters::Springs k = p.springs(c);
-  return {c.scale * k.kn, c.scale * k.ks, p.tolerance};
+  return {c.scale * k.kn, c.scale * k.ks};
 }
+
+namespace {
+// The holding law's hysteresis of friction decisions: this share of the
+// step's largest block translation (contact_slack).
+constexpr double kFrictionTolerance = 1e-2;
+// Friction consistency (check_contact_states): the share of N to which the
+// normal force of a sliding contact's friction must agree with its solve's,
+// and the solves an attempt may add for it alone.
+constexpr double kConsistency = 1e-6;
+constexpr int kMaxFrictionPasses = 1;
+
+// A contact's motion under the displacement d of a solve (or of a warm
+// start), from the shear offset s0 in force.
+ContactMotion contact_motion(const ContactGradients& k, const ContactOffsets& o, const VecX& d, const Contact& c,
+                             double s0, const ContactParameters& p, double step_motion) {
+  const auto dv = d.segment<6>(6 * c.vblock);
+  const auto de = d.segment<6>(6 * c.eblock);
+  ContactMotion m;
+  m.dn = o.d0 + k.en_v.dot(dv) + k.en_e.dot(de);  // summed from d0 on: every law's gap to the last bit
+  m.ds_step = k.es_v.dot(dv) + k.es_e.dot(de);
+  m.ds = s0 + m.ds_step;
+  m.gap_slack = p.tolerance;
+  // Shi's law decides friction with the model-wide band of the gap decisions.
+  m.shear_slack =
+      p.law == ContactLaw::Shi ? p.tolerance : contact_slack(kFrictionTolerance, step_motion, o.edge_length);
+  return m;
+}
+
+// The step's largest block translation in d: the motion the solve's error is
+// relative to.
+double largest_translation(const VecX& d) {
+  return parallel_max<double>(static_cast<std::size_t>(d.size() / 6), 0.0,
+                              [&](std::size_t b) { return d.segment<2>(6 * b).cwiseAbs().maxCoeff(); });
+}
+
 }  // namespace
 
 // The open-close iteration's first guess in wave problems (short solves):
@@ -72,9 +95,14 @@ ContactSprings contact_springs(const Contact& c, const ContactParameters& p) {
 //     an incline would stick a step at a time);
 //   * an intact joint failing: failure is for good, only a solve may cause it;
 // and the friction of sliding contacts in the first solve still uses the
-// normal force of the last accepted solve (Shi's lag), not a predicted one.
+// normal force of the last accepted solve, not a predicted one (the solves
+// then iterate towards the consistent one, check_contact_states): predicted
+// from the warm start, a block landing on a slope (scripts/incline.lua) got
+// an N of a penetration it never reached, and its open-close iteration did
+// not settle in five steps.
 void predict_contact_states(std::span<Contact> contacts, const ContactLinearisation& lin, const VecX& d,
                             const ContactParameters& p, OpenCloseState& s) {
+  const double step_motion = largest_translation(d);
   parallel_for_each(
       contacts.size(),
       [&](std::size_t i) {
@@ -82,10 +110,9 @@ void predict_contact_states(std::span<Contact> contacts, const ContactLinearisat
         if (c.intact) return;
         const ContactIterationState before = iteration_state(c);
         const ContactIterate iterate = s.iterate[i];
-        const ContactMotion m = contact_motion(lin.gradients[i], lin.offsets[i], d, c);
-        const ContactSprings springs = contact_springs(c, p);
-        update_contact_state(c, s.iterate[i], p.joints[c.joint], p.tan_friction[c.joint], springs, m.dn,
-                             iterate.s0 + m.ds_step, m.ds_step);
+        const ContactMotion m = contact_motion(lin.gradients[i], lin.offsets[i], d, c, iterate.s0, p, step_motion);
+        update_contact_state(c, s.iterate[i], p.joints[c.joint], p.tan_friction[c.joint], contact_springs(c, p), m,
+                             p.law);
         if (before.state != ContactState::Open && c.state == ContactState::Open) {
           set_iteration_state(c, before);
           s.iterate[i] = iterate;
@@ -99,22 +126,48 @@ bool check_contact_states(std::span<Contact> contacts, const ContactLinearisatio
                           const ContactParameters& p, OpenCloseState& s) {
   const std::size_t nc = contacts.size();
   s.changed.resize(nc);
+  const double step_motion = largest_translation(d);
+  std::atomic<bool> any_friction{false};  // a sliding contact's N moved
   const int any_changed = parallel_max<int>(nc, 0, [&](std::size_t i) {
     Contact& c = contacts[i];
     const ContactSprings springs = contact_springs(c, p);
-    const auto [dn, ds_step] = contact_motion(lin.gradients[i], lin.offsets[i], d, c);
-    const double ds = s.iterate[i].s0 + ds_step;
+    const ContactMotion m = contact_motion(lin.gradients[i], lin.offsets[i], d, c, s.iterate[i].s0, p, step_motion);
     const double tan_phi = p.tan_friction[c.joint];
-    const bool changed = update_contact_state(c, s.iterate[i], p.joints[c.joint], tan_phi, springs, dn, ds, ds_step);
-    s.changed[i] = changed;
-    c.penetration = dn;
+    const ContactState before = c.state;
+    const double friction_normal = s.iterate[i].normal_force;  // the N this solve's friction used
+    bool changed = update_contact_state(c, s.iterate[i], p.joints[c.joint], tan_phi, springs, m, p.law);
+    // Friction consistent with the normal force of the accepted solution: a
+    // contact that slid through the solve with the N of the solve before (or
+    // of the prediction) iterates again until that N holds, to kConsistency
+    // of N (and round-off, in force).
+    bool friction_moved = false;
+    if (p.law == ContactLaw::Holding && !changed && before == ContactState::Sliding &&
+        c.state == ContactState::Sliding) {
+      const double n = s.iterate[i].normal_force;
+      friction_moved = std::abs(n - friction_normal) >
+                       kConsistency * std::abs(n) + springs.kn * contact_slack(0, 0, lin.offsets[i].edge_length);
+    }
+    s.changed[i] = changed || friction_moved;
+    c.penetration = m.dn;
     c.normal_force = s.iterate[i].normal_force;
-    c.shear_force = c.state == ContactState::Locked    ? springs.ks * ds
-                    : c.state == ContactState::Sliding ? -c.slide_sign * std::max(0.0, c.normal_force) * tan_phi
+    // (Shi's law kept the engine's earlier sign of the sliding friction,
+    // against the spring's: its results, state hashes included, are the
+    // earlier ones bit for bit.)
+    const double friction_sign = p.law == ContactLaw::Shi ? -c.slide_sign : c.slide_sign;
+    c.shear_force = c.state == ContactState::Locked    ? springs.ks * m.ds
+                    : c.state == ContactState::Sliding ? friction_sign * std::max(0.0, c.normal_force) * tan_phi
                                                        : 0.0;
-    return changed ? 1 : 0;
+    if (friction_moved) any_friction.store(true, std::memory_order_relaxed);
+    return changed ? 2 : friction_moved ? 1 : 0;
   });
-  return any_changed != 0;
+  // States that changed always call for another solve; friction alone for
+  // at most kMaxFrictionPasses (it converges fast: a sliding block's N
+  // depends on its friction only through its moment, and the open-close
+  // limit, which cuts the step, must not be spent on it).
+  const bool friction = any_friction.load(std::memory_order_relaxed);
+  const bool friction_pass = friction && s.friction_passes < kMaxFrictionPasses;
+  if (friction) ++s.friction_passes;
+  return any_changed == 2 || friction_pass;
 }
 
 double deepest_penetration(std::span<const Contact> contacts) {
@@ -123,7 +176,11 @@ double deepest_penetration(std::span<const Contact> contacts) {
   });
 }
 
-void keep_shear_references(std::span<Contact> contacts, const ContactLinearisation& lin, const OpenCloseState& s) {
+namespace {
+// Shi's law: a contact that ends the step locked keeps the point it locked at
+// (or takes its position at the step start, where it locked again unloaded);
+// others drop it.
+void keep_locked_references(std::span<Contact> contacts, const ContactLinearisation& lin, const OpenCloseState& s) {
   parallel_for_each(
       contacts.size(),
       [&](std::size_t i) {
@@ -136,6 +193,45 @@ void keep_shear_references(std::span<Contact> contacts, const ContactLinearisati
         } else {
           c.ref_valid = false;
         }
+      },
+      256);
+}
+}  // namespace
+
+// The reference point sits where the shear spring carries the contact's
+// shear force: a locked contact keeps the point it locked at (the iteration's
+// reference, moved only when it re-locked from the step start's offset), a
+// sliding one takes the point behind the vertex at which the spring would
+// carry its friction N·tanφ. A contact that locks again (or a step redone)
+// then starts from the force it carried, without a jump: a spring that
+// re-locked unloaded let a block on an incline slip by its shear
+// displacement S/ks at every re-lock and ratchet down the slope.
+void keep_shear_references(std::span<Contact> contacts, const ContactLinearisation& lin, const OpenCloseState& s,
+                           const ContactParameters& p) {
+  if (p.law == ContactLaw::Shi) {
+    keep_locked_references(contacts, lin, s);
+    return;
+  }
+  parallel_for_each(
+      contacts.size(),
+      [&](std::size_t i) {
+        Contact& c = contacts[i];
+        const ContactOffsets& o = lin.offsets[i];
+        const ContactIterate& it = s.iterate[i];
+        const double ks = contact_springs(c, p).ks;
+        if (c.state == ContactState::Open || !(ks > 0)) {
+          c.ref_valid = false;
+          return;
+        }
+        // Where it.shear was measured from.
+        const double reference = c.ref_valid && it.s0 == o.s0 ? c.ref_param : o.param - it.s0 / o.edge_length;
+        if (c.state == ContactState::Locked) {
+          c.ref_param = reference;
+        } else {
+          const double carried = c.shear_force / ks;  // the friction's shear offset
+          c.ref_param = reference + (it.shear - carried) / o.edge_length;
+        }
+        c.ref_valid = true;
       },
       256);
 }

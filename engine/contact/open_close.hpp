@@ -17,7 +17,7 @@ namespace dda {
 struct ContactParameters {
   double g0 = 0;           // normal spring (resolved: never 0)
   double shear_ratio = 0;  // shear spring / normal spring
-  double tolerance = 0;    // open-close hysteresis (m)
+  double tolerance = 0;    // open-close hysteresis of gap decisions (m)
   std::span<const JointMaterial> joints;
   std::span<const double> tan_friction;  // tan φ per joint material
 
@@ -36,13 +36,18 @@ struct ContactParameters {
     }
     return {g0, shear_ratio * g0};
   }
+  ContactLaw law = ContactLaw::Holding;  // update_contact_state
 };
+
+// A contact's springs (ContactParameters::springs), scaled by its overlap scale.
+ContactSprings contact_springs(const Contact& c, const ContactParameters& p);
 
 // Per contact, parallel to the contact list: what the open-close iteration
 // works on.
 struct OpenCloseState {
   std::vector<ContactIterate> iterate;
   std::vector<char> changed;                 // by the last check (its rows are reassembled)
+  int friction_passes = 0;                   // solves of this attempt redone for friction alone
   std::vector<ContactIterationState> saved;  // at the start of the step, for a redo
 };
 
@@ -67,8 +72,10 @@ bool check_contact_states(std::span<Contact> contacts, const ContactLinearisatio
 // The deepest penetration of a closed contact (the g2 bound).
 double deepest_penetration(std::span<const Contact> contacts);
 
-// The accepted step: a contact that ends it locked keeps (or takes) its shear
-// reference point; others drop it.
-void keep_shear_references(std::span<Contact> contacts, const ContactLinearisation& lin, const OpenCloseState& s);
+// The accepted step: a closed contact keeps (or takes) the shear reference
+// point at which its shear spring carries the shear force it ends the step
+// with (locked: its spring force; sliding: its friction); open ones drop it.
+void keep_shear_references(std::span<Contact> contacts, const ContactLinearisation& lin, const OpenCloseState& s,
+                           const ContactParameters& p);
 
 }  // namespace dda

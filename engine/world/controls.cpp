@@ -24,6 +24,7 @@ constexpr ControlRange kZeroEveryCoreOrPositive{0, kInf, false, false, "must be 
 
 constexpr const char* kPlaneNames[] = {"stress", "strain"};                            // PlaneMode order
 constexpr const char* kIntegratorNames[] = {"shi", "newmark", "generalized_alpha"};    // Integrator order
+constexpr const char* kContactLawNames[] = {"holding", "shi"};                         // ContactLaw order
 constexpr const char* kPreconditionerNames[] = {"auto", "block_jacobi", "multigrid"};  // Preconditioning order
 constexpr const char* kSolverNames[] = {"auto", "pcg", "cholmod"};                     // SolverKind order
 constexpr const char* kFillOrderingNames[] = {"metis", "amd"};                         // FillOrdering order
@@ -86,7 +87,20 @@ const ControlSpec kControls[] = {
         "open-close iterations before Δt is cut and the step redone"),
     number(
         "contact_tolerance", [](Controls& c) -> double& { return c.contact_tolerance; }, kZeroOrPositive,
-        "open-close hysteresis, fraction of half the model height"),
+        "open-close hysteresis, fraction of half the model height: of every decision under "
+        "`contact_law = \"shi\"`; under `\"holding\"` of gap decisions and intact joints only (the friction "
+        "decisions of other contacts have a band of their own, a hundredth of the step's largest block "
+        "translation: docs/contacts.md)"),
+    choice(
+        "contact_law", kContactLawNames, [](const Controls& c) { return static_cast<int>(c.contact_law); },
+        [](Controls& c, int i) { c.contact_law = static_cast<ContactLaw>(i); },
+        "`\"holding\"`: a contact's shear force is continuous through its changes of state (a contact "
+        "that locks again keeps the force its spring carried), friction agrees with the normal force of "
+        "the accepted solve, friction decisions have a band of their own in the contact's motion, and joints "
+        "without cohesion or tension are unbonded from the start: a block that must hold on a slope holds at "
+        "every Δt. `\"shi\"`: Shi's law as the engine had it before, bit for bit: a contact that closes or "
+        "locks again does so unloaded, and a block that must stay on a slope creeps down it; the paper's "
+        "scripts pin it to reproduce the paper's figures (docs/contacts.md)"),
     number(
         "contact_range", [](Controls& c) -> double& { return c.contact_range; }, kZeroOrPositive,
         "m: blocks closer than this at the start of a step are in contact; a step in which a vertex moves"

@@ -14,6 +14,7 @@
 #include <string>
 
 #include "block/time_scheme.hpp"
+#include "contact/contact_law.hpp"
 #include "core/material.hpp"
 #include "core/types.hpp"
 #include "solver/solver_settings.hpp"
@@ -38,13 +39,21 @@ struct Controls {
   double rho_inf = 0.9;                     // generalized-α: spectral radius at high frequency
   double shear_ratio = 0.4;                 // shear spring = shear_ratio × g0 (Shi's 2/5)
   int open_close_limit = 6;                 // open-close iterations before Δt is cut and the step redone
-  // Open-close hysteresis, as a fraction of half the model height: a closed
-  // contact opens once separated by more than this, an open one closes once
-  // penetrated by more; a locked contact slides once its shear force exceeds
-  // its strength by the shear spring times this. Without it, contacts that
-  // carry next to no force (the Poisson-loaded vertical joints of a wall)
-  // flip state on round-off and the iteration never settles.
+  // Open-close hysteresis of gap decisions and intact joints, as a fraction
+  // of half the model height: a closed contact opens once separated by more
+  // than this, an open one closes once penetrated by more; an intact joint
+  // fails once its shear force exceeds its strength by the shear spring
+  // times this. Without it, contacts that carry next to no force (the
+  // Poisson-loaded vertical joints of a wall) flip state on round-off and the
+  // iteration never settles. (Under ContactLaw::Shi, friction decisions take
+  // it too; under Holding those of contacts that are not intact joints have
+  // their own band, in the step's units: contact/contact_law.hpp,
+  // contact_slack.)
   double contact_tolerance = 1e-9;
+  // The contact law (contact/contact_law.hpp): Holding, in which friction
+  // holds; Shi, the law of Shi (1988) as the engine had it before, bit for
+  // bit (the paper's scripts, for its figures).
+  ContactLaw contact_law = ContactLaw::Holding;
   double contact_range = 0;         // m; 0 → automatic (contact/contact_detection.hpp)
   double fixed_point_factor = 100;  // fixed-point spring = factor × g0
   Vec2 gravity = Vec2::Zero();      // m/s²

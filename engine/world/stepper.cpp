@@ -165,7 +165,7 @@ void Stepper::derive_material_constants(const WorldState& w) {
   for (std::size_t r = 0; r < w.rocks.size(); ++r) elastic_[r] = elastic_matrix(w.rocks[r], c.plane);
   tan_friction_.resize(w.joints.size());
   for (std::size_t j = 0; j < w.joints.size(); ++j) tan_friction_[j] = std::tan(deg_to_rad(w.joints[j].friction_deg));
-  contact_law_ = {g0_, c.shear_ratio, c.contact_tolerance * w.half_height, w.joints, tan_friction_};
+  contact_law_ = {g0_, c.shear_ratio, c.contact_tolerance * w.half_height, w.joints, tan_friction_, c.contact_law};
   scheme_.gg = c.gg;
   scheme_.choose(c.integrator, c.rho_inf);
 }
@@ -396,7 +396,7 @@ void Stepper::update(WorldState& w) {
   move_material_points(w.tracked, blocks, solution_);
   move_blocks(w.blocks, solution_, vertex_motion_, elastic_, scheme_);
   detection_.add_rotations(solution_);
-  keep_shear_references(w.contacts, linearisation_, open_close_);
+  keep_shear_references(w.contacts, linearisation_, open_close_, contact_law_);
   w.time += w.dt;
   ++w.steps;
 }

@@ -3,8 +3,12 @@
 -- Models:  the scenes of scenes.lua (bar, blast(2), wall(10), wall(20) with gg = 1)
 --          and the incline of scripts/incline.lua, each stepped a fixed count.
 -- Run:     build/dda run scripts/bench/state_hashes.lua [--set threads=2] [--set only=bar]
---          Compare the output with bench/state_hashes.txt: a refactoring that
---          must not change results prints the same lines.
+--                [--set contact_law=shi]
+--          Compare the output with bench/state_hashes.txt (contact_law
+--          "holding", the default) or bench/state_hashes_shi.txt (contact_law=shi,
+--          the engine's results before the holding law, bit for bit): a
+--          refactoring that must not change results prints the same lines.
+--          (tests script.state_hashes and script.state_hashes_shi compare them.)
 -- Writes:  prints "scene steps hash" lines; nothing else.
 
 local dda = require "dda"
@@ -13,6 +17,7 @@ local scenes = require "scenes"
 
 local threads = dda.param("threads", 2)
 local only = dda.param("only", "")
+local contact_law = dda.param("contact_law", "holding")  -- set on every scene (the blast pins "shi" itself)
 
 local function incline()
   local g, alpha, phi = 9.81, math.rad(30), 20
@@ -38,6 +43,7 @@ for _, r in ipairs(runs) do
   local name, steps, make = r[1], r[2], r[3]
   if only == "" or only == name then
     local m = make()
+    m:controls{ contact_law = contact_law }
     m:step(steps)
     print(string.format("%-12s %5d %s", name, steps, m:hash()))
   end

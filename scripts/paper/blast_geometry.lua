@@ -21,7 +21,8 @@ local spacing = dda.param("spacing", 2)     -- m
 local check_step = dda.param("check_step", true)
 local h = size / 2
 
-local m = dda.model{ plane = "strain", g0 = 100e9, g1 = 1e-5, g2 = 0.005, gg = 1 }
+-- contact_law = "shi": the paper's DDA contact law (docs/contacts.md), as every paper script.
+local m = dda.model{ plane = "strain", g0 = 100e9, g1 = 1e-5, g2 = 0.005, gg = 1, contact_law = "shi" }
 local rock = m:rock{ density = 2650, E = 74e9, nu = 0.2 }
 local joint = m:joint{ friction = 25, cohesion = 2e6, tension = 0 }
 

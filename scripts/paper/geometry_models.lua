@@ -21,7 +21,8 @@ out:write("model,blocks,area,left_edges,right_edges,right_length,smallest_block\
 print(string.format("%-6s %-58s %7s %9s %6s %6s", "model", "description", "blocks", "area", "left", "right"))
 for number in wanted:gmatch("%d+") do
   number = tonumber(number)
-  local m = dda.model{ plane = "stress", g0 = 20 * bars.rock.E, g1 = 2e-6, g2 = 0.005, gg = 1 }
+  -- contact_law = "shi": the paper's DDA contact law (docs/contacts.md), as every paper script.
+  local m = dda.model{ plane = "stress", g0 = 20 * bars.rock.E, g1 = 2e-6, g2 = 0.005, gg = 1, contact_law = "shi" }
   local rock = m:rock(bars.rock)
   local joint = m:joint{ friction = 40, cohesion = 8e6, tension = 8e6 }
   local blocks = bars.build(m, number, rock, joint)

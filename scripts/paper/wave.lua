@@ -62,8 +62,10 @@ function wave.run(o)
   local model = o.model or 1
   local freq, amp = o.freq or 1000, o.amp or wave.A
   local g0 = (o.g0 or 1) * E
+  -- contact_law = "shi": the paper's DDA contact law, which its figures and
+  -- docs/validation.md were made with (docs/contacts.md).
   local m = dda.model{ plane = "stress", g0 = g0, g1 = o.dt or 2e-6, g2 = 0.005, gg = 1,
-                       integrator = o.integrator or "shi" }
+                       integrator = o.integrator or "shi", contact_law = "shi" }
   local rock = m:rock(bars.rock)
   local joint = m:joint{ friction = o.phi or 40, cohesion = o.c or 8e6, tension = o.tension or 8e6 }
   local blocks = bars.build(m, model, rock, joint)
