@@ -98,9 +98,10 @@ const ControlSpec kControls[] = {
         "that locks again keeps the force its spring carried), friction agrees with the normal force of "
         "the accepted solve, friction decisions have a band of their own in the contact's motion, and joints "
         "without cohesion or tension are unbonded from the start: a block that must hold on a slope holds at "
-        "every Δt. `\"shi\"`: Shi's law as the engine had it before, bit for bit: a contact that closes or "
-        "locks again does so unloaded, and a block that must stay on a slope creeps down it; the paper's "
-        "scripts pin it to reproduce the paper's figures (docs/contacts.md)"),
+        "every Δt; not yet the default: its friction band follows the largest block translation, so on a "
+        "shaken base contacts cannot slide. `\"shi\"` (default): Shi's law as the engine has always had it: "
+        "a contact that closes or locks again does so unloaded, and a block that must stay on a slope creeps "
+        "down it at small Δt; the paper's scripts pin it to reproduce the paper's figures (docs/contacts.md)"),
     number(
         "contact_range", [](Controls& c) -> double& { return c.contact_range; }, kZeroOrPositive,
         "m: blocks closer than this at the start of a step are in contact; a step in which a vertex moves"

@@ -50,10 +50,12 @@ struct Controls {
   // their own band, in the step's units: contact/contact_law.hpp,
   // contact_slack.)
   double contact_tolerance = 1e-9;
-  // The contact law (contact/contact_law.hpp): Holding, in which friction
-  // holds; Shi, the law of Shi (1988) as the engine had it before, bit for
-  // bit (the paper's scripts, for its figures).
-  ContactLaw contact_law = ContactLaw::Holding;
+  // The contact law (contact/contact_law.hpp): Shi, the law of Shi (1988)
+  // as the engine has always had it (the default: a block that must hold on
+  // a slope creeps at small Δt); Holding, in which friction holds, opt-in
+  // until its friction band stops freezing contacts on a shaken base
+  // (docs/contacts.md).
+  ContactLaw contact_law = ContactLaw::Shi;
   double contact_range = 0;         // m; 0 → automatic (contact/contact_detection.hpp)
   double fixed_point_factor = 100;  // fixed-point spring = factor × g0
   Vec2 gravity = Vec2::Zero();      // m/s²

@@ -1,5 +1,7 @@
 #include "world/energy.hpp"
 
+#include <cmath>
+
 #include <Eigen/LU>
 
 #include "assembly/block_terms.hpp"
@@ -53,11 +55,12 @@ ContactEnergy contact_energy(std::span<const Contact> contacts, const ContactLin
     if (c.state == ContactState::Locked) {
       if (ks > 0) e.held += 0.5 * c.shear_force * c.shear_force / ks;
     } else {
-      // Sliding: the friction force on the vertex block along the edge
-      // (Contact::shear_force) times the step's shear motion.
+      // Sliding: friction (|Contact::shear_force| = N·tanφ) opposes the
+      // step's shear motion, whichever sign convention the contact law
+      // reports its shear force in: the work is −|S·ds|.
       const ContactGradients& g = lin.gradients[i];
       const double ds_step = g.es_v.dot(d.segment<6>(6 * c.vblock)) + g.es_e.dot(d.segment<6>(6 * c.eblock));
-      e.friction += c.shear_force * ds_step;
+      e.friction -= std::abs(c.shear_force * ds_step);
     }
   }
   return e;

@@ -5,7 +5,7 @@
 -- Run:     build/dda run scripts/bench/state_hashes.lua [--set threads=2] [--set only=bar]
 --                [--set contact_law=shi]
 --          Compare the output with bench/state_hashes.txt (contact_law
---          "holding", the default) or bench/state_hashes_shi.txt (contact_law=shi,
+--          "holding", opt-in) or bench/state_hashes_shi.txt (contact_law=shi,
 --          the engine's results before the holding law, bit for bit): a
 --          refactoring that must not change results prints the same lines.
 --          (tests script.state_hashes and script.state_hashes_shi compare them.)
@@ -17,7 +17,7 @@ local scenes = require "scenes"
 
 local threads = dda.param("threads", 2)
 local only = dda.param("only", "")
-local contact_law = dda.param("contact_law", "holding")  -- set on every scene (the blast pins "shi" itself)
+local contact_law = dda.param("contact_law", "holding")  -- set on every scene, whatever the default (the blast pins "shi" itself)
 
 local function incline()
   local g, alpha, phi = 9.81, math.rad(30), 20

@@ -34,6 +34,7 @@ struct Incline {
     block = w.add_block(test::rotated(test::rectangle(2, 0, 1, 0.5), a), rock);
     w.controls().gravity = Vec2(0, -kG);
     w.controls().g1 = dt;
+    w.controls().contact_law = ContactLaw::Holding;  // opt-in (controls.hpp)
     down_slope = Vec2(-std::cos(a), -std::sin(a));
     const Vec2 interface = test::rotated({Vec2(2.5, 0)}, a)[0];
     on_block = w.add_tracked_point(block, interface);
@@ -199,6 +200,7 @@ TEST(Friction, LowerBlockOfASlidingStackHolds) {
     const BlockId upper = w.add_block(test::rotated(test::rectangle(3.2, 0.5, 0.5, 0.5), a), rock, {slippery, 0, 0, 0});
     w.controls().gravity = Vec2(0, -kG);
     w.controls().g1 = dt;
+    w.controls().contact_law = ContactLaw::Holding;  // opt-in (controls.hpp)
     const Vec2 down(-std::cos(a), -std::sin(a));
     const Vec2 middle = test::rotated({Vec2(2.5, 0)}, a)[0];
     const int on_lower = w.add_tracked_point(lower, middle), on_base = w.add_tracked_point(base, middle);
