@@ -3,6 +3,7 @@
 // liblua; getmetatable(m).__gc(m) deleted a model that handles still used.
 #include <gtest/gtest.h>
 
+#include "lua_state_test.hpp"
 #include "script_helpers.hpp"
 #include "scripting.hpp"
 
@@ -10,26 +11,15 @@ using namespace dda::script;
 
 namespace {
 
-class Faults : public ::testing::Test {
+class Faults : public dda::test::LuaStateTest {
  protected:
   void SetUp() override {
     dir_ = std::make_unique<dda::test::TempDir>(::testing::UnitTest::GetInstance()->current_test_info()->name());
     Session s;
     s.out_dir = dir_->path / "out";
-    L = new_state(std::move(s));
-    ASSERT_NE(L, nullptr);
+    start(std::move(s));
     // Modules are looked up in the temporary folder; `dir` names it.
     run("package.path = '" + (dir_->path / "?.lua").string() + "'\ndir = '" + dir_->path.string() + "/'");
-  }
-  void TearDown() override { lua_close(L); }
-  void run(const std::string& code) {
-    std::string error;
-    ASSERT_TRUE(run_string(L, code, "test", error)) << error;
-  }
-  std::string error_of(const std::string& code) {
-    std::string error;
-    EXPECT_FALSE(run_string(L, code, "test", error)) << "no error from:\n" << code;
-    return error;
   }
   // A function's bytecode with one byte of its instructions overwritten (a
   // flipped disk block): liblua 5.4 loads it and segfaults running it.
@@ -42,7 +32,6 @@ class Faults : public ::testing::Test {
         "f:write(bad) f:close()\n"
         "corrupted = bad");
   }
-  lua_State* L = nullptr;
   std::unique_ptr<dda::test::TempDir> dir_;
 };
 

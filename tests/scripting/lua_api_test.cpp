@@ -6,6 +6,7 @@
 #include <cstdio>
 
 #include "../scenes.hpp"
+#include "lua_state_test.hpp"
 #include "lua_support.hpp"
 #include "script_helpers.hpp"
 #include "scripting.hpp"
@@ -15,28 +16,14 @@ using namespace dda::script;
 
 namespace {
 
-class LuaApi : public ::testing::Test {
+class LuaApi : public dda::test::LuaStateTest {
  protected:
   void SetUp() override {
     out_ = std::make_unique<dda::test::TempDir>(::testing::UnitTest::GetInstance()->current_test_info()->name());
     Session s;
     s.out_dir = out_->path;
     s.params["answer"] = "42";
-    L = new_state(std::move(s));
-    ASSERT_NE(L, nullptr);
-  }
-  void TearDown() override { lua_close(L); }
-
-  // Runs code; fails the test with the message on error.
-  void run(const std::string& code) {
-    std::string error;
-    ASSERT_TRUE(run_string(L, code, "test", error)) << error;
-  }
-  // Runs code expecting an error; returns the message.
-  std::string error_of(const std::string& code) {
-    std::string error;
-    EXPECT_FALSE(run_string(L, code, "test", error)) << "no error from:\n" << code;
-    return error;
+    start(std::move(s));
   }
   double number(const char* global) {
     lua_getglobal(L, global);
@@ -51,7 +38,6 @@ class LuaApi : public ::testing::Test {
     return v;
   }
 
-  lua_State* L = nullptr;
   std::unique_ptr<dda::test::TempDir> out_;
 };
 

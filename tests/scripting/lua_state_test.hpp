@@ -1,0 +1,38 @@
+#pragma once
+// A GoogleTest fixture around one in-process Lua state with the dda module:
+// a test's SetUp makes the Session and calls start(); run() and error_of()
+// execute Lua code as a script would.
+#include <gtest/gtest.h>
+
+#include <string>
+
+#include "scripting.hpp"
+
+namespace dda::test {
+
+class LuaStateTest : public ::testing::Test {
+ protected:
+  void start(script::Session s) {
+    L = script::new_state(std::move(s));
+    ASSERT_NE(L, nullptr);
+  }
+  void TearDown() override {
+    if (L) lua_close(L);
+  }
+
+  // Runs code; fails the test with the message on error.
+  void run(const std::string& code) {
+    std::string error;
+    ASSERT_TRUE(script::run_string(L, code, "test", error)) << error;
+  }
+  // Runs code expecting an error; returns the message.
+  std::string error_of(const std::string& code) {
+    std::string error;
+    EXPECT_FALSE(script::run_string(L, code, "test", error)) << "no error from:\n" << code;
+    return error;
+  }
+
+  lua_State* L = nullptr;
+};
+
+}  // namespace dda::test
