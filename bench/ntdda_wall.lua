@@ -2,10 +2,11 @@
 -- CPU ms, open-close iterations and simulated ms per step after the untimed ones.
 --
 -- Models:  scripts/bench/scenes.lua's wall(n); --set gg=0|1 (quasi-static or
---          dynamic), --set solver=auto|pcg|cholmod, --set tol=default|ntdda
+--          dynamic), --set solver=auto|pcg|cholmod, --set tol=default|ntdda|<number>
 --          (ntdda: contact_tolerance set to ntdda's open-close tolerance,
 --          2e-7 of w0 = half the model's larger side, where ours is a fraction of
---          half its height), --set threads, --set steps=10 timed after
+--          half its height; a number: that contact_tolerance), --set threads,
+--          --set steps=10 timed after
 --          --set warmup=2.
 -- Run:     build/dda run bench/ntdda_wall.lua --set n=20 --set gg=1
 -- Writes:  one line: OURS cpu_ms_per_step X oc_per_step X sim_ms_per_step X cuts X
@@ -32,8 +33,10 @@ if tol == "ntdda" then
   -- The wall spans x from -1 to n + 1 and y from -1 to n: ntdda's w0 is (n + 2) / 2,
   -- half our model height (n + 1) / 2.
   m:controls{ contact_tolerance = 2e-7 * (n + 2) / (n + 1) }
+elseif tonumber(tol) then
+  m:controls{ contact_tolerance = tonumber(tol) }
 elseif tol ~= "default" then
-  error("tol must be 'default' or 'ntdda' (got '" .. tostring(tol) .. "')")
+  error("tol must be 'default', 'ntdda' or a contact_tolerance (got '" .. tostring(tol) .. "')")
 end
 m:step(warmup)
 local t_start, cpu_start = m:time(), os.clock()
