@@ -54,6 +54,17 @@ add_test(NAME script.ntdda_wall
          WORKING_DIRECTORY ${PROJECT_SOURCE_DIR})
 set_tests_properties(script.ntdda_wall PROPERTIES LABELS scripts TIMEOUT 60)
 
+# The automatic solver choice keeps the factor on wall(200) (80,201 blocks)
+# after its 4-step trial: there a step with the kept factor costs a fifth of a
+# PCG step, and the trial's first factorisation (counted as spread over 50
+# steps, solver_choice.hpp) must not send it back to PCG. The last of 8 steps
+# must have run with the factor.
+add_test(NAME script.auto_keeps_the_factor_on_wall200
+         COMMAND bash -c "$1 run bench/ntdda_wall.lua --quiet --out \"$2\" --set n=200 --set warmup=2 --set steps=6 --set threads=2 | awk '/^OURS/ && $11 == \"cholmod\" { ok = 1 } END { exit !ok }'" _
+                 $<TARGET_FILE:dda> ${DDA_SCRIPT_TEST_OUT}
+         WORKING_DIRECTORY ${PROJECT_SOURCE_DIR})
+set_tests_properties(script.auto_keeps_the_factor_on_wall200 PROPERTIES LABELS long TIMEOUT 1800 RUN_SERIAL TRUE)
+
 # The paper's Section 4 blast (scripts/paper/blast.lua). A 3 ms run of the 100 m
 # DHI model checks the first arrival at MP1 against the P-wave travel time and
 # that no contact penetrates beyond the g2 bound; the full figure runs

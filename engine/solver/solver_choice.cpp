@@ -53,7 +53,13 @@ void AutoSolver::begin_step(const SolverSettings& settings, const StepSolveInfo&
 void AutoSolver::choose(const StepSolveInfo& info) {
   if (solves_ == 0) return;  // no step yet
   if (on_direct_) {
-    const double work = direct_step_work();
+    double work = direct_step_work();
+    // The trial's first factorisation serves every step the factor is then
+    // kept: counted as spread over kRetrySteps steps, not over the trial's
+    // kTrialSteps (wall(200): a factorisation of 80,000 blocks outweighed
+    // four PCG steps, and PCG was kept at 5 times the factor's cost per step).
+    if (direct_steps_ == 0 && factorisations_ > 0)
+      work -= (1 - static_cast<double>(kTrialSteps) / kRetrySteps) * factorisation_work();
     ++direct_steps_;
     direct_work_ = direct_steps_ <= kTrialSteps ? direct_work_ + (work - direct_work_) / direct_steps_
                                                 : 0.8 * direct_work_ + 0.2 * work;
@@ -84,9 +90,15 @@ double AutoSolver::direct_step_work() const {
   const double product_flops = 72.0 * f.stored_blocks();
   if (!(product_flops > 0)) return static_cast<double>(iterations_);
   const double solve = kSolveFlopWeight * 4 * f.factor_entries() / product_flops;
+  return static_cast<double>(iterations_) * (1 + solve) + factorisations_ * factorisation_work();
+}
+
+double AutoSolver::factorisation_work() const {
+  const CholmodFactor& f = direct_->factor();
+  const double product_flops = 72.0 * f.stored_blocks();
+  if (!(product_flops > 0)) return 0;
   // The factorisation, and the stored matrix assembled for it (about two products).
-  const double factorisation = kFactorFlopWeight * f.factor_flops() / product_flops + 2;
-  return static_cast<double>(iterations_) * (1 + solve) + factorisations_ * factorisation;
+  return kFactorFlopWeight * f.factor_flops() / product_flops + 2;
 }
 
 SolveReport AutoSolver::counted(const SolveReport& r) {

@@ -19,12 +19,14 @@
 //      use the factor. (Not after one: the first step solves tightly in every
 //      open-close iteration, solve_regime.hpp, and its PCG work is not that
 //      of the steps after it, which the factor is judged against.)
-//   2. After kTrialSteps steps with the factor (its first analysis and
-//      factorisation included), and on each step after, its average work per
-//      step (the trial's mean, then an exponential average) is compared with
-//      the last PCG step's; where PCG was cheaper, steps go back to PCG and
-//      the factor is tried again only after kRetrySteps steps (doubled after
-//      each failed trial).
+//   2. After kTrialSteps steps with the factor, and on each step after, its
+//      average work per step (the trial's mean, then an exponential average)
+//      is compared with the last PCG step's; where PCG was cheaper, steps go
+//      back to PCG and the factor is tried again only after kRetrySteps steps
+//      (doubled after each failed trial). The trial's first factorisation is
+//      counted as spread over kRetrySteps steps: it serves every step the
+//      factor is kept, and on large systems it would otherwise outweigh the
+//      trial (wall(200)).
 //
 // Counts, not seconds: seconds depend on the machine's load, and the choice
 // changes the answer within the solver tolerance, so a choice from timings
@@ -70,7 +72,8 @@ class AutoSolver final : public LinearSolver {
   LinearSolver& current() { return on_direct_ ? static_cast<LinearSolver&>(*direct_) : pcg_; }
   SolveReport counted(const SolveReport& r);
   void choose(const StepSolveInfo& info);
-  double direct_step_work() const;  // of this step's counts, in products
+  double direct_step_work() const;    // of this step's counts, in products
+  double factorisation_work() const;  // one numeric factorisation, in products
 
   PcgSolver pcg_;
   std::unique_ptr<CholmodSolver> direct_;  // made on first use
