@@ -19,6 +19,8 @@
 #     0..32767) through the linker's --wrap;
 #   - FORTY (analysis.h) sizes its sparse-storage scratch arrays at 40 entries per
 #     block, too few for wall(40) (3,241 blocks: a heap overflow): raised to 400.
+# (The checkout's console/ holds only Windows project files, and its
+# tests/unit/pipeline_test.c runs one fixed example, so the driver is written here.)
 # The driver runs ddacut and ddanalysis on the XML input this script writes and
 # times the steps after WARMUP (2) untimed ones through ntdda's display() hook
 # (linked with --wrap), which the step loop calls after every step.
