@@ -49,6 +49,8 @@ ntdda=${1:?usage: bench/ntdda_side_by_side.sh NTDDA_CHECKOUT (see the comment at
 root=$(cd "$(dirname "$0")/.." && pwd)
 dda=${DDA:-$root/build/dda}
 [[ -x $dda ]] || { echo "ntdda_side_by_side.sh: $dda not built (cmake --build build)" >&2; exit 2; }
+command -v xml2-config > /dev/null ||
+  { echo "ntdda_side_by_side.sh: ntdda reads its input with libxml2: install libxml2-dev (xml2-config not found)" >&2; exit 2; }
 work=${WORK:-/tmp/ntdda-side-by-side}
 walls=${WALLS:-10 20 40}
 runs=${RUNS:-3}
