@@ -8,7 +8,8 @@
 #   THREADS="1 2" SOLVERS="auto pcg cholmod" bench/ntdda_side_by_side.sh /path/to/ntdda
 #
 # ntdda is not part of the build. Its checkout is read, never written: the
-# sources are copied into $WORK (default /tmp/ntdda-side-by-side) and patched
+# sources are copied into $WORK (default /tmp/ntdda-side-by-side; ntdda's own
+# output files make it about 450 MB with wall(40): remove it after) and patched
 # there, then compiled with -O2 and a console driver written by this script:
 #   - -fcommon: its headers define globals (GCC 10 and later default to -fno-common);
 #   - its ray casting in blocks.c (crr, rlt) takes rand()/2048 and rand()/2^21
