@@ -69,7 +69,9 @@ struct PairDetector {
   std::vector<Contact>& out;
   std::vector<std::pair<int, int>> covered;  // (block, vertex) already in a facing-edge contact
 
-  void add(int vb, int vertex, int eb, int edge, double length, double scale = 1) {
+  // Adds the contact unless its vertex has gone round the edge's corner;
+  // returns whether it did.
+  bool add(int vb, int vertex, int eb, int edge, double length, double scale = 1) {
     Contact c;
     c.vblock = vb;
     c.vertex = vertex;
@@ -78,7 +80,9 @@ struct PairDetector {
     c.joint = edge_joint[blocks.start[eb] + edge];
     c.length = length;
     c.scale = scale;
+    if (passed_corner(blocks, c)) return false;
     out.push_back(c);
+    return true;
   }
   bool is_covered(int b, int k) const {
     return std::find(covered.begin(), covered.end(), std::pair<int, int>(b, k)) != covered.end();
@@ -112,21 +116,23 @@ struct PairDetector {
         const int a_lo = wrap(a, ia + 1), a_hi = ia;  // a's vertices at the low / high end
         const int b_lo = ib, b_hi = wrap(b, ib + 1);  // b's vertices at the low / high end
         // Low end of the overlap (near eb's start).
+        // (A vertex that has gone round a corner makes no contact here and
+        // stays free for the vertex-vertex and vertex-edge search.)
         if (s1 >= -tie) {
-          add(a, a_lo, b, ib, share, scale);
-          covered.emplace_back(a, a_lo);
-          if (s1 <= tie) covered.emplace_back(b, b_lo);
-        } else {
-          add(b, b_lo, a, ia, share, scale);
+          if (add(a, a_lo, b, ib, share, scale)) {
+            covered.emplace_back(a, a_lo);
+            if (s1 <= tie) covered.emplace_back(b, b_lo);
+          }
+        } else if (add(b, b_lo, a, ia, share, scale)) {
           covered.emplace_back(b, b_lo);
         }
         // High end (near eb's end).
         if (s0 <= eb.length + tie) {
-          add(a, a_hi, b, ib, share, scale);
-          covered.emplace_back(a, a_hi);
-          if (s0 >= eb.length - tie) covered.emplace_back(b, b_hi);
-        } else {
-          add(b, b_hi, a, ia, share, scale);
+          if (add(a, a_hi, b, ib, share, scale)) {
+            covered.emplace_back(a, a_hi);
+            if (s0 >= eb.length - tie) covered.emplace_back(b, b_hi);
+          }
+        } else if (add(b, b_hi, a, ia, share, scale)) {
           covered.emplace_back(b, b_hi);
         }
       }
@@ -192,7 +198,10 @@ struct PairDetector {
           const double other_gap = (blocks.vertex(x, vx) - other.p0).dot(other.n);
           if (gap < 0 && other_gap > -gap && other_gap > 1e-6 * other.length) return;
           const double score = entrance_score(wedge_of(x, vx), e);
-          if (score > best.score) best = {x, vx, y, ey, score};
+          if (score <= best.score) return;
+          Contact option;
+          option.vblock = x, option.vertex = vx, option.eblock = y, option.edge = ey;
+          if (!passed_corner(blocks, option)) best = {x, vx, y, ey, score};
         };
         consider(a, k, b, wrap(b, l - 1), l);
         consider(a, k, b, l, wrap(b, l - 1));
@@ -205,6 +214,29 @@ struct PairDetector {
 };
 
 }  // namespace
+
+bool passed_corner(const BlockPolygons& blocks, const Contact& c) {
+  const int b = c.eblock, f = c.edge;
+  const Vec2& v = blocks.vertex(c.vblock, c.vertex);
+  const Vec2 &p0 = blocks.vertex(b, f), &p1 = blocks.vertex(b, f + 1);
+  const Vec2 d = p1 - p0;
+  const double length = d.norm();
+  const Vec2 t = d / length, n(t.y(), -t.x());  // outward normal: the block lies left of the edge
+  const double depth = -(v - p0).dot(n);        // behind the edge's line
+  const double margin = kCornerMargin * length;
+  if (depth <= margin) return false;
+  // The corner at the nearer end, and the other edge there (from `before` to
+  // `after`, counter-clockwise).
+  const bool at_start = (v - p0).dot(t) < 0.5 * length;
+  const Vec2& corner = at_start ? p0 : p1;
+  const Vec2& before = at_start ? blocks.vertex(b, f - 1) : p0;
+  const Vec2& after = at_start ? p1 : blocks.vertex(b, f + 2);
+  if (cross(corner - before, after - corner) <= 0) return false;  // a reflex corner: the vertex can be inside
+  const Vec2 other = at_start ? corner - before : after - corner;
+  const Vec2 other_n = Vec2(other.y(), -other.x()) / other.norm();
+  const double other_depth = -(v - corner).dot(other_n);  // behind the other edge's line (negative: outside)
+  return depth > std::max(0.0, kCornerRatio * other_depth) + margin;
+}
 
 namespace {
 void detect_with_table(const BlockPolygons& blocks, const EdgeTable& table, std::span<const int> edge_joint, int a,
