@@ -9,9 +9,11 @@
 --          must follow vertices past the ends of edges (docs/contacts.md,
 --          contact transfer).
 -- Run:     build/dda run scripts/jointed_slope.lua [--set t_end=5] [--set dt=1e-3] [--set law=shi]
--- Writes:  prints, every 0.1 s, the largest block displacement, the deepest
---          closed-contact penetration and the step count; returns the same
---          at the end as results (result.csv).
+-- Writes:  prints, every 0.1 s, the largest block displacement, how many
+--          blocks moved more than 0.1 m, the deepest closed-contact penetration
+--          and the step count; returns the same at the end as results
+--          (result.csv). Blocks that roll off the far end of the ground fall
+--          on without end (there is nothing below them).
 
 local dda = require "dda"
 
@@ -38,13 +40,17 @@ print(string.format("%d blocks", #blocks))
 
 local start = {}
 for i = 1, #blocks do start[i] = { blocks[i]:centroid() } end
+-- The largest block motion (blocks that roll off the far end of the ground
+-- fall on without end), and how many blocks moved more than 0.1 m.
 local function largest_motion()
-  local largest = 0
+  local largest, moved = 0, 0
   for i = 1, #blocks do
     local x, y = blocks[i]:centroid()
-    largest = math.max(largest, math.sqrt((x - start[i][1]) ^ 2 + (y - start[i][2]) ^ 2))
+    local d = math.sqrt((x - start[i][1]) ^ 2 + (y - start[i][2]) ^ 2)
+    largest = math.max(largest, d)
+    if d > 0.1 then moved = moved + 1 end
   end
-  return largest
+  return largest, moved
 end
 local function deepest()
   local d = 0
@@ -56,11 +62,14 @@ end
 
 local clock0 = os.clock()
 m:run{ time = t_end, every = math.max(1, math.floor(0.1 / dt + 0.5)), callback = function(model)
-  print(string.format("t = %5.2f s  steps %6d  largest block motion %8.4f m  deepest penetration %9.3e m",
-                      model:time(), model:steps(), largest_motion(), deepest()))
+  local largest, moved = largest_motion()
+  print(string.format("t = %5.2f s  steps %6d  largest block motion %8.4f m  moved > 0.1 m: %2d  deepest penetration %9.3e m",
+                      model:time(), model:steps(), largest, moved, deepest()))
 end }
-local result = { blocks = #blocks, t = m:time(), steps = m:steps(), largest_motion = largest_motion(),
-                 deepest = deepest(), cpu_s = os.clock() - clock0 }
-print(string.format("done: t = %.3f s, %d steps, largest block motion %.4f m, cpu %.1f s", result.t, result.steps,
-                    result.largest_motion, result.cpu_s))
+local largest, moved = largest_motion()
+local result = { blocks = #blocks, t = m:time(), steps = m:steps(), step_cuts = m:totals().step_cuts,
+                 largest_motion = largest, moved = moved, deepest = deepest(), cpu_s = os.clock() - clock0 }
+print(string.format("done: t = %.3f s, %d steps (%d cuts), largest block motion %.4f m, %d blocks moved > 0.1 m, "
+                    .. "deepest penetration %.3e m, cpu %.1f s", result.t, result.steps, result.step_cuts,
+                    result.largest_motion, result.moved, result.deepest, result.cpu_s))
 return result

@@ -238,6 +238,17 @@ bool passed_corner(const BlockPolygons& blocks, const Contact& c) {
   return depth > std::max(0.0, kCornerRatio * other_depth) + margin;
 }
 
+bool slid_past_end(const BlockPolygons& blocks, const Contact& c) {
+  const Vec2& v = blocks.vertex(c.vblock, c.vertex);
+  const Vec2 &p0 = blocks.vertex(c.eblock, c.edge), &p1 = blocks.vertex(c.eblock, c.edge + 1);
+  const Vec2 &before = blocks.vertex(c.vblock, c.vertex - 1), &after = blocks.vertex(c.vblock, c.vertex + 1);
+  const double length = (p1 - p0).norm();
+  const double own = std::max((v - before).norm(), (after - v).norm());
+  const double along = (v - p0).dot(p1 - p0) / length;
+  const double tie = kEndTie * std::min(length, own);
+  return along < -tie || along > length + tie;
+}
+
 namespace {
 void detect_with_table(const BlockPolygons& blocks, const EdgeTable& table, std::span<const int> edge_joint, int a,
                        int b, const NarrowPhaseSettings& settings, std::vector<Contact>& out) {

@@ -56,6 +56,15 @@ bool passed_corner(const BlockPolygons& blocks, const Contact& c);
 inline constexpr double kCornerMargin = 1e-3;
 inline constexpr double kCornerRatio = 10;
 
+// Whether contact c's vertex has slid past an end of its edge, along the
+// edge, by more than kEndTie of the shorter of the edge and the longer edge
+// at the vertex. No search makes such a contact (facing edges place a
+// contact's vertex at most their tie, 5 % of the shorter edge, past the end;
+// vertex-edge contacts lie inside the edge): the vertex, carried on the
+// edge's line beyond its end, would ride on an edge that is not there.
+bool slid_past_end(const BlockPolygons& blocks, const Contact& c);
+inline constexpr double kEndTie = 0.05;
+
 // Every pair in parallel; the result is ordered by pair, then identity,
 // whatever the thread count.
 std::vector<Contact> detect_contacts(const BlockPolygons& blocks, std::span<const int> edge_joint,
