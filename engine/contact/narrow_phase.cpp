@@ -185,7 +185,7 @@ struct PairDetector {
         };
         Option best{-1, -1, -1, -1, -kWedgeSlack};
         // Edge ey of y ends at y's vertex vy; other_ey is y's other edge there.
-        auto consider = [&](int x, int vx, int y, int ey, int other_ey) {
+        auto consider = [&](int x, int vx, int y, int ey, int other_ey, int corner) {
           if (!is_convex(x, vx)) return;
           const Edge& e = edge_of(y, ey);
           const double gap = (blocks.vertex(x, vx) - e.p0).dot(e.n);
@@ -194,19 +194,22 @@ struct PairDetector {
           // the vertex is beside y's corner, not in it, and the negative gap
           // is a false penetration (a search range wider than the blocks
           // pairs vertices up to a metre apart across a chamber corner).
+          // Only at a convex corner: beside a reflex one, outside the other
+          // edge's line is still inside y (a vertex on a bench's floor, a
+          // few centimetres from the foot of the wall above it).
           const Edge& other = edge_of(y, other_ey);
           const double other_gap = (blocks.vertex(x, vx) - other.p0).dot(other.n);
-          if (gap < 0 && other_gap > -gap && other_gap > 1e-6 * other.length) return;
+          if (is_convex(y, corner) && gap < 0 && other_gap > -gap && other_gap > 1e-6 * other.length) return;
           const double score = entrance_score(wedge_of(x, vx), e);
           if (score <= best.score) return;
           Contact option;
           option.vblock = x, option.vertex = vx, option.eblock = y, option.edge = ey;
           if (!passed_corner(blocks, option)) best = {x, vx, y, ey, score};
         };
-        consider(a, k, b, wrap(b, l - 1), l);
-        consider(a, k, b, l, wrap(b, l - 1));
-        consider(b, l, a, wrap(a, k - 1), k);
-        consider(b, l, a, k, wrap(a, k - 1));
+        consider(a, k, b, wrap(b, l - 1), l, l);
+        consider(a, k, b, l, wrap(b, l - 1), l);
+        consider(b, l, a, wrap(a, k - 1), k, k);
+        consider(b, l, a, k, wrap(a, k - 1), k);
         if (best.vblock >= 0) add(best.vblock, best.vertex, best.eblock, best.edge, 0.0);
       }
     }
@@ -239,13 +242,22 @@ bool passed_corner(const BlockPolygons& blocks, const Contact& c) {
 }
 
 bool slid_past_end(const BlockPolygons& blocks, const Contact& c) {
+  const int b = c.eblock, f = c.edge;
   const Vec2& v = blocks.vertex(c.vblock, c.vertex);
-  const Vec2 &p0 = blocks.vertex(c.eblock, c.edge), &p1 = blocks.vertex(c.eblock, c.edge + 1);
+  const Vec2 &p0 = blocks.vertex(b, f), &p1 = blocks.vertex(b, f + 1);
   const Vec2 &before = blocks.vertex(c.vblock, c.vertex - 1), &after = blocks.vertex(c.vblock, c.vertex + 1);
   const double length = (p1 - p0).norm();
-  const double own = std::max((v - before).norm(), (after - v).norm());
   const double along = (v - p0).dot(p1 - p0) / length;
-  const double tie = kEndTie * std::min(length, own);
+  if (along >= 0 && along <= length) return false;
+  // Past a reflex corner the vertex runs into the next edge at once: any
+  // distance beyond the corner margin. Past a convex one, the facing edges' tie.
+  const bool at_start = along < 0;
+  const Vec2& corner = at_start ? p0 : p1;
+  const Vec2& prev = at_start ? blocks.vertex(b, f - 1) : p0;
+  const Vec2& next = at_start ? p1 : blocks.vertex(b, f + 2);
+  const bool reflex = cross(corner - prev, next - corner) < 0;
+  const double own = std::max((v - before).norm(), (after - v).norm());
+  const double tie = reflex ? kCornerMargin * length : kEndTie * std::min(length, own);
   return along < -tie || along > length + tie;
 }
 

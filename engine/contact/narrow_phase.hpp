@@ -58,10 +58,14 @@ inline constexpr double kCornerRatio = 10;
 
 // Whether contact c's vertex has slid past an end of its edge, along the
 // edge, by more than kEndTie of the shorter of the edge and the longer edge
-// at the vertex. No search makes such a contact (facing edges place a
-// contact's vertex at most their tie, 5 % of the shorter edge, past the end;
-// vertex-edge contacts lie inside the edge): the vertex, carried on the
-// edge's line beyond its end, would ride on an edge that is not there.
+// at the vertex (where the edge's block turns outwards there, a convex
+// corner), or by more than kCornerMargin of the edge (a reflex corner, where
+// the vertex runs into the block's next edge at once). No search makes such
+// a contact at a convex corner (facing edges place a contact's vertex at
+// most their tie, 5 % of the shorter edge, past the end; vertex-edge
+// contacts lie inside the edge): the vertex, carried on the edge's line
+// beyond its end, would ride on an edge that is not there, or pass through
+// the next one into the block.
 bool slid_past_end(const BlockPolygons& blocks, const Contact& c);
 inline constexpr double kEndTie = 0.05;
 
