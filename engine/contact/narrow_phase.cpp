@@ -160,8 +160,12 @@ struct PairDetector {
         if (along <= 0 || along >= e.length) continue;
         const double gap = (v - e.p0).dot(e.n);
         if (gap > s.range || gap < -std::min(s.range, 0.25 * e.length)) continue;
-        if ((v - e.p0).squaredNorm() <= s.range * s.range || (v - e.p1).squaredNorm() <= s.range * s.range)
-          continue;  // near an end: a vertex-vertex approach
+        // Near a convex end: a vertex-vertex approach (the entrance rule picks
+        // one edge). Near a reflex end the vertex is in a notch of y and may
+        // meet both edges there: each is a vertex-edge contact.
+        if (((v - e.p0).squaredNorm() <= s.range * s.range && is_convex(y, f)) ||
+            ((v - e.p1).squaredNorm() <= s.range * s.range && is_convex(y, f + 1)))
+          continue;
         if (facing(prev, e, s.parallel_sin) || facing(next, e, s.parallel_sin)) continue;
         if (entrance_score(wedge, e) < -kWedgeSlack) continue;
         add(x, k, y, f, 0.0);

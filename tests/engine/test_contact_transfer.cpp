@@ -114,7 +114,7 @@ TEST(ContactTransfer, VertexSlidPastACornerMakesNoFalsePenetration) {
 // took the wall, 6 cm away: the vertex sank into the floor unresisted, and in
 // the earthquake showcase a block was thrown out at 77 m/s. Reference: one
 // contact, vertex 1 of the triangle against the floor.
-TEST(ContactTransfer, VertexOnABenchFloorBesideAReflexCornerMeetsTheFloor) {
+TEST(ContactTransfer, VertexInANotchMeetsTheFloorAndTheWall) {
   const std::vector<Vec2> bench = {{0, 0}, {3, 0}, {3, 1}, {1, 1}, {1, 3}, {0, 3}};  // floor: edge 2 (3,1)→(1,1)
   const std::vector<Vec2> wedge = {{1.067, 0.9996}, {2.0, 2.0}, {1.1, 2.4}};
   std::vector<int> start{0, 6, 9};
@@ -130,6 +130,21 @@ TEST(ContactTransfer, VertexOnABenchFloorBesideAReflexCornerMeetsTheFloor) {
   EXPECT_EQ(found[0].vertex, 0);
   EXPECT_EQ(found[0].eblock, 0);
   EXPECT_EQ(found[0].edge, 2) << "paired with edge " << found[0].edge;
+  // In the notch, 1 mm above the floor and 5 cm from the wall, 30 cm up the
+  // search range: it meets both (the vertex-edge search left every vertex
+  // within the range of an edge's end to the vertex-vertex rule, which picks
+  // one edge; a vertex sliding along the floor towards the wall had only the
+  // wall, and sank into the floor). Reference: contacts with edges 2 and 3.
+  vertices[6] = Vec2(1.05, 1.001);
+  found.clear();
+  detect_pair_contacts(BlockPolygons{start, vertices}, joints, 0, 1, settings, found);
+  bool floor = false, wall = false;
+  for (const Contact& c : found) {
+    floor = floor || (c.vblock == 1 && c.vertex == 0 && c.edge == 2);
+    wall = wall || (c.vblock == 1 && c.vertex == 0 && c.edge == 3);
+  }
+  EXPECT_TRUE(floor);
+  EXPECT_TRUE(wall);
 }
 
 namespace {
