@@ -20,9 +20,9 @@
 --          Both hold the base vertically; the sides are free. Shi's scheme
 --          (gg = 1), steps of at most 0.25 ms (at 2 ms the open-close
 --          iteration does not settle), g0 = 1e11 N/m, g2 = 0.005.
---          If the engine cannot complete a step (today: a vertex-to-corner
---          contact during large sliding can report a penetration past the g2
---          bound), the run stops there, says so, and still writes its outputs.
+--          Both bases run the record to its end (docs/seismic.md, Section 4).
+--          If the engine cannot complete a step, the run stops there, says so
+--          (naming the contact), and still writes its outputs.
 -- Run:     build/dda run scripts/earthquake_slope.lua [--set base=rigid|compliant]
 --                   [--set t_end=12] [--set scale=1] [--set frames=0.1] [--set phi=40]
 --          Both bases, one after the other:

@@ -31,6 +31,14 @@ foreach(base rigid compliant)
   dda_run_test(script.earthquake_slope_${base} scripts 600 earthquake_slope.lua --set base=${base} --set settle=0.1
                --set t_end=0.1 --set frames=0.05)
 endforeach()
+# The 77-block jointed slope of issue 22 (contact transfer): stalled at
+# t = 0.13 s before vertices transferred past the corners of edges; the test
+# fails if any step cannot be completed. 0.5 s here, 5 s at both step sizes
+# as long tests.
+dda_run_test(script.jointed_slope scripts 600 jointed_slope.lua --set t_end=0.5)
+foreach(dt 1e-3 1e-4)
+  dda_run_test(script.jointed_slope_5s_dt${dt} long 3600 jointed_slope.lua --set t_end=5 --set dt=${dt})
+endforeach()
 dda_run_test(script.paper_geometry scripts 600 paper/geometry_models.lua)
 dda_run_test(script.blast_geometry scripts 600 paper/blast_geometry.lua)
 

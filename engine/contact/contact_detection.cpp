@@ -49,7 +49,13 @@ bool ContactDetection::detect(const Blocks& blocks, double range, std::vector<Co
     lin.gradients[i] = k;
     return lin.offsets[i] = k;
   };
-  if (!list_is_stale(blocks, range)) {
+  // A vertex gone round the corner of its contact's edge, or slid past its
+  // end, is searched again: it belongs to the next edge there or to a
+  // vertex-vertex contact (contact transfer, docs/contacts.md).
+  const bool left_an_edge = parallel_max<int>(contacts.size(), 0, [&](std::size_t i) {
+                              return passed_corner(polys, contacts[i]) || slid_past_end(polys, contacts[i]) ? 1 : 0;
+                            }) != 0;
+  if (!left_an_edge && !list_is_stale(blocks, range)) {
     // Same contacts: refresh their linearisation from the current geometry.
     lin.gradients.resize(contacts.size());
     lin.offsets.resize(contacts.size());

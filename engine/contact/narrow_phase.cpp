@@ -69,7 +69,9 @@ struct PairDetector {
   std::vector<Contact>& out;
   std::vector<std::pair<int, int>> covered;  // (block, vertex) already in a facing-edge contact
 
-  void add(int vb, int vertex, int eb, int edge, double length, double scale = 1) {
+  // Adds the contact unless its vertex has gone round the edge's corner;
+  // returns whether it did.
+  bool add(int vb, int vertex, int eb, int edge, double length, double scale = 1) {
     Contact c;
     c.vblock = vb;
     c.vertex = vertex;
@@ -78,7 +80,9 @@ struct PairDetector {
     c.joint = edge_joint[blocks.start[eb] + edge];
     c.length = length;
     c.scale = scale;
+    if (passed_corner(blocks, c)) return false;
     out.push_back(c);
+    return true;
   }
   bool is_covered(int b, int k) const {
     return std::find(covered.begin(), covered.end(), std::pair<int, int>(b, k)) != covered.end();
@@ -112,21 +116,23 @@ struct PairDetector {
         const int a_lo = wrap(a, ia + 1), a_hi = ia;  // a's vertices at the low / high end
         const int b_lo = ib, b_hi = wrap(b, ib + 1);  // b's vertices at the low / high end
         // Low end of the overlap (near eb's start).
+        // (A vertex that has gone round a corner makes no contact here and
+        // stays free for the vertex-vertex and vertex-edge search.)
         if (s1 >= -tie) {
-          add(a, a_lo, b, ib, share, scale);
-          covered.emplace_back(a, a_lo);
-          if (s1 <= tie) covered.emplace_back(b, b_lo);
-        } else {
-          add(b, b_lo, a, ia, share, scale);
+          if (add(a, a_lo, b, ib, share, scale)) {
+            covered.emplace_back(a, a_lo);
+            if (s1 <= tie) covered.emplace_back(b, b_lo);
+          }
+        } else if (add(b, b_lo, a, ia, share, scale)) {
           covered.emplace_back(b, b_lo);
         }
         // High end (near eb's end).
         if (s0 <= eb.length + tie) {
-          add(a, a_hi, b, ib, share, scale);
-          covered.emplace_back(a, a_hi);
-          if (s0 >= eb.length - tie) covered.emplace_back(b, b_hi);
-        } else {
-          add(b, b_hi, a, ia, share, scale);
+          if (add(a, a_hi, b, ib, share, scale)) {
+            covered.emplace_back(a, a_hi);
+            if (s0 >= eb.length - tie) covered.emplace_back(b, b_hi);
+          }
+        } else if (add(b, b_hi, a, ia, share, scale)) {
           covered.emplace_back(b, b_hi);
         }
       }
@@ -154,8 +160,12 @@ struct PairDetector {
         if (along <= 0 || along >= e.length) continue;
         const double gap = (v - e.p0).dot(e.n);
         if (gap > s.range || gap < -std::min(s.range, 0.25 * e.length)) continue;
-        if ((v - e.p0).squaredNorm() <= s.range * s.range || (v - e.p1).squaredNorm() <= s.range * s.range)
-          continue;  // near an end: a vertex-vertex approach
+        // Near a convex end: a vertex-vertex approach (the entrance rule picks
+        // one edge). Near a reflex end the vertex is in a notch of y and may
+        // meet both edges there: each is a vertex-edge contact.
+        if (((v - e.p0).squaredNorm() <= s.range * s.range && is_convex(y, f)) ||
+            ((v - e.p1).squaredNorm() <= s.range * s.range && is_convex(y, f + 1)))
+          continue;
         if (facing(prev, e, s.parallel_sin) || facing(next, e, s.parallel_sin)) continue;
         if (entrance_score(wedge, e) < -kWedgeSlack) continue;
         add(x, k, y, f, 0.0);
@@ -179,7 +189,7 @@ struct PairDetector {
         };
         Option best{-1, -1, -1, -1, -kWedgeSlack};
         // Edge ey of y ends at y's vertex vy; other_ey is y's other edge there.
-        auto consider = [&](int x, int vx, int y, int ey, int other_ey) {
+        auto consider = [&](int x, int vx, int y, int ey, int other_ey, int corner) {
           if (!is_convex(x, vx)) return;
           const Edge& e = edge_of(y, ey);
           const double gap = (blocks.vertex(x, vx) - e.p0).dot(e.n);
@@ -188,16 +198,22 @@ struct PairDetector {
           // the vertex is beside y's corner, not in it, and the negative gap
           // is a false penetration (a search range wider than the blocks
           // pairs vertices up to a metre apart across a chamber corner).
+          // Only at a convex corner: beside a reflex one, outside the other
+          // edge's line is still inside y (a vertex on a bench's floor, a
+          // few centimetres from the foot of the wall above it).
           const Edge& other = edge_of(y, other_ey);
           const double other_gap = (blocks.vertex(x, vx) - other.p0).dot(other.n);
-          if (gap < 0 && other_gap > -gap && other_gap > 1e-6 * other.length) return;
+          if (is_convex(y, corner) && gap < 0 && other_gap > -gap && other_gap > 1e-6 * other.length) return;
           const double score = entrance_score(wedge_of(x, vx), e);
-          if (score > best.score) best = {x, vx, y, ey, score};
+          if (score <= best.score) return;
+          Contact option;
+          option.vblock = x, option.vertex = vx, option.eblock = y, option.edge = ey;
+          if (!passed_corner(blocks, option)) best = {x, vx, y, ey, score};
         };
-        consider(a, k, b, wrap(b, l - 1), l);
-        consider(a, k, b, l, wrap(b, l - 1));
-        consider(b, l, a, wrap(a, k - 1), k);
-        consider(b, l, a, k, wrap(a, k - 1));
+        consider(a, k, b, wrap(b, l - 1), l, l);
+        consider(a, k, b, l, wrap(b, l - 1), l);
+        consider(b, l, a, wrap(a, k - 1), k, k);
+        consider(b, l, a, k, wrap(a, k - 1), k);
         if (best.vblock >= 0) add(best.vblock, best.vertex, best.eblock, best.edge, 0.0);
       }
     }
@@ -205,6 +221,49 @@ struct PairDetector {
 };
 
 }  // namespace
+
+bool passed_corner(const BlockPolygons& blocks, const Contact& c) {
+  const int b = c.eblock, f = c.edge;
+  const Vec2& v = blocks.vertex(c.vblock, c.vertex);
+  const Vec2 &p0 = blocks.vertex(b, f), &p1 = blocks.vertex(b, f + 1);
+  const Vec2 d = p1 - p0;
+  const double length = d.norm();
+  const Vec2 t = d / length, n(t.y(), -t.x());  // outward normal: the block lies left of the edge
+  const double depth = -(v - p0).dot(n);        // behind the edge's line
+  const double margin = kCornerMargin * length;
+  if (depth <= margin) return false;
+  // The corner at the nearer end, and the other edge there (from `before` to
+  // `after`, counter-clockwise).
+  const bool at_start = (v - p0).dot(t) < 0.5 * length;
+  const Vec2& corner = at_start ? p0 : p1;
+  const Vec2& before = at_start ? blocks.vertex(b, f - 1) : p0;
+  const Vec2& after = at_start ? p1 : blocks.vertex(b, f + 2);
+  if (cross(corner - before, after - corner) <= 0) return false;  // a reflex corner: the vertex can be inside
+  const Vec2 other = at_start ? corner - before : after - corner;
+  const Vec2 other_n = Vec2(other.y(), -other.x()) / other.norm();
+  const double other_depth = -(v - corner).dot(other_n);  // behind the other edge's line (negative: outside)
+  return depth > std::max(0.0, kCornerRatio * other_depth) + margin;
+}
+
+bool slid_past_end(const BlockPolygons& blocks, const Contact& c) {
+  const int b = c.eblock, f = c.edge;
+  const Vec2& v = blocks.vertex(c.vblock, c.vertex);
+  const Vec2 &p0 = blocks.vertex(b, f), &p1 = blocks.vertex(b, f + 1);
+  const Vec2 &before = blocks.vertex(c.vblock, c.vertex - 1), &after = blocks.vertex(c.vblock, c.vertex + 1);
+  const double length = (p1 - p0).norm();
+  const double along = (v - p0).dot(p1 - p0) / length;
+  if (along >= 0 && along <= length) return false;
+  // Past a reflex corner the vertex runs into the next edge at once: any
+  // distance beyond the corner margin. Past a convex one, the facing edges' tie.
+  const bool at_start = along < 0;
+  const Vec2& corner = at_start ? p0 : p1;
+  const Vec2& prev = at_start ? blocks.vertex(b, f - 1) : p0;
+  const Vec2& next = at_start ? p1 : blocks.vertex(b, f + 2);
+  const bool reflex = cross(corner - prev, next - corner) < 0;
+  const double own = std::max((v - before).norm(), (after - v).norm());
+  const double tie = reflex ? kCornerMargin * length : kEndTie * std::min(length, own);
+  return along < -tie || along > length + tie;
+}
 
 namespace {
 void detect_with_table(const BlockPolygons& blocks, const EdgeTable& table, std::span<const int> edge_joint, int a,

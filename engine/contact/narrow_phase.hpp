@@ -23,6 +23,9 @@
 //     most clearly. Corners of aligned blocks that merely touch (the diagonal
 //     neighbours at a four-block junction of a regular joint grid) make no
 //     contact: the facing edges of the side neighbours carry that junction.
+// Neither kind pairs a vertex with an edge it has gone round the corner of
+// (passed_corner): such a vertex belongs to the next edge at that corner
+// (docs/contacts.md, contact transfer).
 #include <span>
 #include <utility>
 #include <vector>
@@ -41,6 +44,30 @@ struct NarrowPhaseSettings {
 // `edge_joint` indexed like blocks.vertices, and length; state left Open).
 void detect_pair_contacts(const BlockPolygons& blocks, std::span<const int> edge_joint, int a, int b,
                           const NarrowPhaseSettings& settings, std::vector<Contact>& out);
+
+// Whether contact c's vertex has gone round the corner at the nearer end of
+// its edge: it lies behind the edge's line by more than its depth behind the
+// line of the edge's neighbour at that (convex) corner, plus a margin of
+// kCornerMargin of the edge's length. Its "penetration" is then no overlap of
+// the blocks (the vertex is outside the edge's block, or nearer the other
+// edge) and would push it along the wrong normal: the vertex belongs to the
+// next edge at that corner, or to a vertex-vertex contact there.
+bool passed_corner(const BlockPolygons& blocks, const Contact& c);
+inline constexpr double kCornerMargin = 1e-3;
+inline constexpr double kCornerRatio = 10;
+
+// Whether contact c's vertex has slid past an end of its edge, along the
+// edge, by more than kEndTie of the shorter of the edge and the longer edge
+// at the vertex (where the edge's block turns outwards there, a convex
+// corner), or by more than kCornerMargin of the edge (a reflex corner, where
+// the vertex runs into the block's next edge at once). No search makes such
+// a contact at a convex corner (facing edges place a contact's vertex at
+// most their tie, 5 % of the shorter edge, past the end; vertex-edge
+// contacts lie inside the edge): the vertex, carried on the edge's line
+// beyond its end, would ride on an edge that is not there, or pass through
+// the next one into the block.
+bool slid_past_end(const BlockPolygons& blocks, const Contact& c);
+inline constexpr double kEndTie = 0.05;
 
 // Every pair in parallel; the result is ordered by pair, then identity,
 // whatever the thread count.

@@ -41,6 +41,7 @@
 
 #include "assembly/contact_terms.hpp"
 #include "contact/broad_phase.hpp"
+#include "contact/contact_report.hpp"
 #include "core/error.hpp"
 #include "core/memory.hpp"
 #include "core/parallel.hpp"
@@ -373,10 +374,12 @@ void Stepper::control_step(WorldState& w, Rejection r) {
   stats_.cut_reason =
       msg(describe(r), r == Rejection::BlockInverted ? msg(" (block ", motion_.inverted_block, ")") : std::string());
   if (stats_.step_cuts == c.max_step_cuts)
-    throw Error(
-        msg("step ", w.steps + 1, " at t = ", w.time, " s: ", stats_.cut_reason, " even after ", stats_.step_cuts,
-            " cuts of the time step (down to ", w.dt, " s). ",
-            r == Rejection::PenetrationTooDeep ? "Raise g0 (contact stiffness) or g2." : "Check loads, g0 and g2."));
+    throw Error(msg("step ", w.steps + 1, " at t = ", w.time, " s: ", stats_.cut_reason, " even after ",
+                    stats_.step_cuts, " cuts of the time step (down to ", w.dt, " s). ",
+                    r == Rejection::PenetrationTooDeep
+                        ? describe_deepest_contact(w.blocks, w.contacts, linearisation_, contact_law_,
+                                                   c.g2 * w.half_height, w.half_height)
+                        : "Check loads, g0 and g2."));
   ++stats_.step_cuts;
   restore_contact_states(w.contacts, open_close_);
   w.dt *= c.cut_factor;
