@@ -229,8 +229,10 @@ TEST(Friction, SlidesAtTheClosedFormRateWhenTheModelMovesAsAWhole) {
 // 0.3516 (W_l + W_u). References: the lower block does not slip (bound
 // 1e-10 m over 0.2 s after the start; before: it crept 3.2e-4 m in 1 s at
 // Δt = 1e-4 s); the upper one slides at g(sin α − cos α tan 10°), 0.1 %.
+// At Δt = 1e-2, 1e-3 and 1e-4 s (at 1e-5 s the upper block chatters and the
+// lower one slips 6.8e-8 m: docs/contacts.md, Known limits).
 TEST(Friction, LowerBlockOfASlidingStackHolds) {
-  for (const double dt : {1e-3, 1e-4}) {
+  for (const double dt : {1e-2, 1e-3, 1e-4}) {
     World w;
     const double a = deg_to_rad(15);
     const int rock = w.add_rock_material(test::granite());
