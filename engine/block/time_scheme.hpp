@@ -126,10 +126,17 @@ struct TimeScheme {
   }
 
   // The warm start: the displacement the last step's motion extrapolates to.
-  // Shi: its acceleration held, (1 + gg)·v·Δt − d_last (with
-  // v = 2·d_last/Δt − gg·v_before); the others: v·Δt + a·Δt²/2.
-  Vec6 extrapolated_displacement(const BlockState& s, const Vec6& d_last) const {
-    if (is_shi()) return (1 + gg) * dt * s.velocity - d_last;
+  // Shi: its acceleration held, a = (v·Δt_last − d_last)·2/Δt_last² (with
+  // v = 2·d_last/Δt_last − gg·v_before), so gg·v·Δt + a·Δt²/2; at
+  // Δt = Δt_last that is (1 + gg)·v·Δt − d_last, which a step after a cut or a
+  // growth of Δt must not take: after a cut by 3 it points up the slope a
+  // block slides down. The others: v·Δt + a·Δt²/2.
+  Vec6 extrapolated_displacement(const BlockState& s, const Vec6& d_last, double dt_last) const {
+    if (is_shi()) {
+      if (dt_last == dt) return (1 + gg) * dt * s.velocity - d_last;
+      const double r = dt / dt_last;
+      return gg * dt * s.velocity + (r * r) * (dt_last * s.velocity - d_last);
+    }
     return gg * (dt * s.velocity + (0.5 * dt * dt) * s.acceleration);
   }
 };

@@ -76,15 +76,16 @@ struct ContactMotion {
 };
 
 // The friction band of the holding law, in the step's own units: a
-// displacement, the tolerance's share of the step's largest block
-// translation, and at least round-off of the contact's edge's length. The
-// decision values come from a solve whose error is relative to the step's
-// displacements, so the band follows the step: it is neither a length of the
-// model (a contact in a model 100× larger decides the same) nor a force
-// through g0, and it vanishes for blocks at rest, where friction must hold to
-// its last newton. (The largest translation, not the contact's own relative
-// motion: a settling wall's vertical joints, which carry next to nothing,
-// slid and opened on the loose solves' error with that: docs/contacts.md.)
+// displacement, the tolerance's share of the spread of the step's block
+// translations (a translation all blocks share drops out: a shaken base), and
+// at least round-off of the contact's edge's length. The decision values come
+// from a solve whose error is relative to the step's displacements, so the
+// band follows the step: it is neither a length of the model (a contact in a
+// model 100× larger decides the same) nor a force through g0, and it vanishes
+// for blocks at rest, where friction must hold to its last newton. (The
+// model's spread, not the contact's own relative motion: a settling wall's
+// vertical joints, which carry next to nothing, slid and opened on the loose
+// solves' error with that: docs/contacts.md.)
 double contact_slack(double tolerance, double motion, double edge_length);
 
 // Decide the contact's next state from its motion under the latest

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <limits>
 
 #include "core/parallel.hpp"
 
@@ -37,8 +38,9 @@ ContactSprings contact_springs(const Contact& c, const ContactParameters& p) {
 
 namespace {
 // The holding law's hysteresis of friction decisions: this share of the
-// step's largest block translation (contact_slack).
+// spread of the step's block translations (contact_slack).
 constexpr double kFrictionTolerance = 1e-2;
+constexpr double kInfinity = std::numeric_limits<double>::infinity();
 // Friction consistency (check_contact_states): the share of N to which the
 // normal force of a sliding contact's friction must agree with its solve's,
 // and the solves an attempt may add for it alone.
@@ -62,11 +64,22 @@ ContactMotion contact_motion(const ContactGradients& k, const ContactOffsets& o,
   return m;
 }
 
-// The step's largest block translation in d: the motion the solve's error is
-// relative to.
-double largest_translation(const VecX& d) {
-  return parallel_max<double>(static_cast<std::size_t>(d.size() / 6), 0.0,
-                              [&](std::size_t b) { return d.segment<2>(6 * b).cwiseAbs().maxCoeff(); });
+// The spread of the blocks' translations in d: per direction, the largest
+// block translation less the smallest, the larger of the two directions. The
+// motion the friction band follows: the solve's error is relative to the
+// step's displacements, yet a translation every block shares (a shaken base
+// carrying its blocks, a model moving as a whole) is no motion of any contact
+// and drops out. With a block held fixed it is at least the largest
+// translation (what the band was before: docs/contacts.md).
+double translation_spread(const VecX& d) {
+  const std::size_t n = static_cast<std::size_t>(d.size() / 6);
+  double spread = 0;
+  for (const int axis : {0, 1}) {
+    const double high = parallel_max<double>(n, -kInfinity, [&](std::size_t b) { return d[6 * b + axis]; });
+    const double low = -parallel_max<double>(n, -kInfinity, [&](std::size_t b) { return -d[6 * b + axis]; });
+    if (n > 0) spread = std::max(spread, high - low);
+  }
+  return spread;
 }
 
 }  // namespace
@@ -102,7 +115,7 @@ double largest_translation(const VecX& d) {
 // not settle in five steps.
 void predict_contact_states(std::span<Contact> contacts, const ContactLinearisation& lin, const VecX& d,
                             const ContactParameters& p, OpenCloseState& s) {
-  const double step_motion = largest_translation(d);
+  const double step_motion = translation_spread(d);
   parallel_for_each(
       contacts.size(),
       [&](std::size_t i) {
@@ -126,7 +139,7 @@ bool check_contact_states(std::span<Contact> contacts, const ContactLinearisatio
                           const ContactParameters& p, OpenCloseState& s) {
   const std::size_t nc = contacts.size();
   s.changed.resize(nc);
-  const double step_motion = largest_translation(d);
+  const double step_motion = translation_spread(d);
   std::atomic<bool> any_friction{false};  // a sliding contact's N moved
   const int any_changed = parallel_max<int>(nc, 0, [&](std::size_t i) {
     Contact& c = contacts[i];

@@ -89,8 +89,8 @@ const ControlSpec kControls[] = {
         "contact_tolerance", [](Controls& c) -> double& { return c.contact_tolerance; }, kZeroOrPositive,
         "open-close hysteresis, fraction of half the model height: of every decision under "
         "`contact_law = \"shi\"`; under `\"holding\"` of gap decisions and intact joints only (the friction "
-        "decisions of other contacts have a band of their own, a hundredth of the step's largest block "
-        "translation: docs/contacts.md)"),
+        "decisions of other contacts have a band of their own, a hundredth of the spread of the step's "
+        "block translations: docs/contacts.md)"),
     choice(
         "contact_law", kContactLawNames, [](const Controls& c) { return static_cast<int>(c.contact_law); },
         [](Controls& c, int i) { c.contact_law = static_cast<ContactLaw>(i); },
@@ -98,8 +98,9 @@ const ControlSpec kControls[] = {
         "that locks again keeps the force its spring carried), friction agrees with the normal force of "
         "the accepted solve, friction decisions have a band of their own in the contact's motion, and joints "
         "without cohesion or tension are unbonded from the start: a block that must hold on a slope holds at "
-        "every Δt; not yet the default: its friction band follows the largest block translation, so on a "
-        "shaken base contacts cannot slide. `\"shi\"` (default): Shi's law as the engine has always had it: "
+        "every Δt; not yet the default: at Δt ≤ 1e-5 s a sliding block chatters (under `\"shi\"` too), "
+        "and a block landing at Δt = 1e-2 s starts sliding late. `\"shi\"` (default): Shi's law as the engine has "
+        "always had it: "
         "a contact that closes or locks again does so unloaded, and a block that must stay on a slope creeps "
         "down it at small Δt; the paper's scripts pin it to reproduce the paper's figures (docs/contacts.md)"),
     number(

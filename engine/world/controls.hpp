@@ -53,8 +53,7 @@ struct Controls {
   // The contact law (contact/contact_law.hpp): Shi, the law of Shi (1988)
   // as the engine has always had it (the default: a block that must hold on
   // a slope creeps at small Δt); Holding, in which friction holds, opt-in
-  // until its friction band stops freezing contacts on a shaken base
-  // (docs/contacts.md).
+  // (docs/contacts.md: what is left before it can be the default).
   ContactLaw contact_law = ContactLaw::Shi;
   double contact_range = 0;         // m; 0 → automatic (contact/contact_detection.hpp)
   double fixed_point_factor = 100;  // fixed-point spring = factor × g0

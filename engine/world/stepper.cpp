@@ -241,13 +241,17 @@ void Stepper::predict(WorldState& w) {
   StageTimer timer(stats_.profile, Stage::PredictStates);
   start_open_close(w.contacts, linearisation_, open_close_);
   const Blocks& blocks = w.blocks;
+  // The Δt of the step the warm start extrapolates from: the last accepted
+  // one's (after a cut or a growth of Δt it differs; Shi's law keeps the
+  // engine's earlier results bit for bit, with this step's).
+  const double dt_last = contact_law_.law == ContactLaw::Holding && w.last_stats.dt > 0 ? w.last_stats.dt : w.dt;
   solution_.resize(6 * static_cast<Eigen::Index>(blocks.count()));
   parallel_for_each(
       blocks.count(),
       [&](std::size_t b) {
         solution_.segment<6>(6 * b) =
             regime_.extrapolate_warm_start
-                ? scheme_.extrapolated_displacement(blocks.scheme_state(b), blocks.last_displacement[b])
+                ? scheme_.extrapolated_displacement(blocks.scheme_state(b), blocks.last_displacement[b], dt_last)
                 : blocks.last_displacement[b];
       },
       256);
