@@ -23,11 +23,16 @@ std::filesystem::path source_dir() {
 std::string docs_controls_table() {
   std::ifstream in(source_dir() / "docs" / "scripting.md");
   std::string line, table;
+  // Every table headed like the controls table is read: a second copy (a
+  // paste in the wrong place) makes the test fail instead of going stale.
   bool inside = false;
   while (std::getline(in, line)) {
     if (line == "| option | default | meaning |") inside = true;
     if (!inside) continue;
-    if (line.empty() || line[0] != '|') break;
+    if (line.empty() || line[0] != '|') {
+      inside = false;
+      continue;
+    }
     table += line + "\n";
   }
   return table;
