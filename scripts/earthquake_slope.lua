@@ -34,7 +34,10 @@
 --          (deg) of every block from the end of the settling to the end, less
 --          the ground's ux, and whether it slid (> 5 cm) or toppled (> 5 deg);
 --          out/slope_frames/velocity_*.png: frames of velocity magnitude on the
---          deformed blocks (displacements magnified 5 times) every 0.1 s of
+--          blocks where they are (displacements drawn true to scale: blocks
+--          slide decimetres, and a magnification would draw them metres apart
+--          and overlapping), one colour scale for the whole film (0 to 1.5 m/s
+--          times `scale`: the record's PGV is 1.13 m/s), every 0.1 s of
 --          shaking (with the renderer); prints the run time (CPU) and a
 --          summary, also written as results (result.csv).
 
@@ -129,7 +132,8 @@ for i = 1, #blocks do
 end
 local film   -- kept: the sequence lives as long as this handle
 if frames > 0 and dda.has_render then
-  film = m:frames{ folder = "slope_frames", every_time = frames, field = "velocity", magnify = 5, on_error = "continue",
+  film = m:frames{ folder = "slope_frames", every_time = frames, field = "velocity", magnify = 1,
+            range = { 0, 1.5 * scale }, on_error = "continue",
             monitors = false }
 end
 -- A run that stops early (a step the engine cannot complete) still writes
