@@ -37,6 +37,19 @@ inline BlockId add_fixed_base(World& w, const std::vector<Vec2>& outline, int ro
   return b;
 }
 
+// A 1 m × 0.5 m granite block resting on a fixed base inclined at `angle`
+// radians, friction `phi` degrees, no cohesion or tension; gravity, Δt =
+// 1e-3 s. Returns the block.
+inline BlockId block_on_incline(World& w, double angle, double phi) {
+  const int rock = w.add_rock_material(granite());
+  w.joint_material(0) = JointMaterial{phi, 0, 0};
+  add_fixed_base(w, rotated(rectangle(-10, -1, 20, 1), angle), rock);
+  const BlockId b = w.add_block(rotated(rectangle(2, 0, 1, 0.5), angle), rock);
+  w.controls().gravity = Vec2(0, -9.81);
+  w.controls().g1 = 1e-3;
+  return b;
+}
+
 // wall(N) of scripts/bench/scenes.lua: N columns of 1 m × 0.5 m
 // bricks, 2N rows in running bond (half bricks at alternate row ends), on a
 // 1 m base held by three fixed points; quasi-static (Shi's static analysis,

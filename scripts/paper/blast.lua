@@ -49,7 +49,8 @@
 --          --set contact_tolerance=X overrides the open-close hysteresis
 --          (fraction of half the model height; engine default 1e-9).
 --          --set integrator=newmark|generalized_alpha: the time integrator
---          (default "shi", the paper's, pinned whatever the engine's default).
+--          (default "shi", the paper's, pinned whatever the engine's default);
+--          --set rho_inf=0.8: generalized-α's spectral radius at infinity.
 -- Writes:  (under --out, <tag> = <load>_<boundary>_<size>)
 --          blast_<tag>_MP1.csv, _MP2.csv, _MP3.csv  step,time,vx,vy,sxx,syy,ux,uy
 --          blast_<tag>_line.csv   time and vy at each line monitor
@@ -80,6 +81,7 @@ local P = {
   line_step = dda.param("line_step", 2),        -- m between line monitors
   contact_tolerance = dda.param("contact_tolerance", 0),  -- 0 = engine default (1e-9)
   integrator = dda.param("integrator", "shi"),  -- the paper's scheme (docs/time_integration.md)
+  rho_inf = dda.param("rho_inf", 0),            -- generalized-α's ρ∞ (0 = the engine's default)
   spacing = dda.param("spacing", 2),            -- m between joints (the paper: 2)
   expect_ppv = dda.param("expect_ppv", 0),      -- m/s: error unless the PPV at MP1 is within ppv_tolerance of it
   ppv_tolerance = dda.param("ppv_tolerance", 0.15),
@@ -120,6 +122,7 @@ local function run_case(cfg)
   local controls = {}
   if (cfg.contact_tolerance or 0) > 0 then controls.contact_tolerance = cfg.contact_tolerance end
   controls.integrator = cfg.integrator or "shi"
+  if (cfg.rho_inf or 0) > 0 then controls.rho_inf = cfg.rho_inf end
   -- finer joint sets cut slivers at the chamber corners: merge those under
   -- 1 % of a full block (as the benchmark scenes do)
   local M = blast_model.build{ size = cfg.size, spacing = spacing, controls = controls,
@@ -260,7 +263,7 @@ end
 local function cfg_with(over)
   local c = { size = P.size, load = P.load, boundary = P.boundary, t_end = P.t_end, frames = P.frames,
               line_step = P.line_step, check = check, contact_tolerance = P.contact_tolerance,
-              spacing = P.spacing, integrator = P.integrator }
+              spacing = P.spacing, integrator = P.integrator, rho_inf = P.rho_inf }
   for k, v in pairs(over or {}) do c[k] = v end
   return c
 end

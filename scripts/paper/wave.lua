@@ -43,6 +43,13 @@ local bars = require "bars"
 local wave = { E = 50e9, A = 5e6, x_centre = 10.1 }
 local E = wave.E
 
+-- The time integrator every wave.run without its own `integrator` uses: nil
+-- (Shi's, the paper's), or { integrator = "newmark" | "generalized_alpha",
+-- rho_inf = ..., suffix = "_newmark" } (validation_report.lua's second pass:
+-- the suffix keeps that pass's monitors, numbers and plots apart).
+wave.scheme = nil
+local function suffix() return wave.scheme and wave.scheme.suffix or "" end
+
 -- The load history (a function of t) and its duration, input peak times.
 function wave.load(kind, f, A)
   local T = 1 / f
@@ -57,6 +64,7 @@ end
 -- One bar run. opts: tag (monitor/CSV name), model (1), g0 (x E), load ("half"),
 -- freq (1000), amp (5e6), phi (40), c (8e6), tension (8e6), right ("fixed"),
 -- p (x E), per_length (true), t_end (s), end_monitor (false), integrator ("shi"),
+-- rho_inf (generalized-α's spectral radius at infinity; the engine's default when nil),
 -- dt (g1, 2e-6 s), at (the monitor point, bars.centre).
 function wave.run(o)
   local model = o.model or 1
@@ -64,8 +72,9 @@ function wave.run(o)
   local g0 = (o.g0 or 1) * E
   -- contact_law = "shi": the paper's DDA contact law, which its figures and
   -- docs/validation.md were made with (docs/contacts.md).
+  local scheme = o.integrator and o or wave.scheme or {}
   local m = dda.model{ plane = "stress", g0 = g0, g1 = o.dt or 2e-6, g2 = 0.005, gg = 1,
-                       integrator = o.integrator or "shi", contact_law = "shi" }
+                       integrator = scheme.integrator or "shi", rho_inf = scheme.rho_inf, contact_law = "shi" }
   local rock = m:rock(bars.rock)
   local joint = m:joint{ friction = o.phi or 40, cohesion = o.c or 8e6, tension = o.tension or 8e6 }
   local blocks = bars.build(m, model, rock, joint)
@@ -100,10 +109,11 @@ function wave.run(o)
       end
     end
   elseif right ~= "free" then error("wave.run: unknown right end " .. tostring(right)) end
-  local centre = m:monitor{ name = o.tag, at = o.at or bars.centre, fields = {"sxx", "vx"} }
+  local tag = o.tag .. suffix()
+  local centre = m:monitor{ name = tag, at = o.at or bars.centre, fields = {"sxx", "vx"} }
   local endmon = nil
   if o.end_monitor then
-    endmon = m:monitor{ name = o.tag .. "_end", at = {19.9, 0.5}, fields = {"ux"} }
+    endmon = m:monitor{ name = tag .. "_end", at = {19.9, 0.5}, fields = {"ux"} }
   end
   m:run{ time = o.t_end, callback = o.callback }
   local c_guess = (o.g0 or 1) >= 10 and 5000 or 4000
@@ -116,10 +126,29 @@ function wave.run(o)
   }
   if endmon then r.ux_end = endmon:series("ux"); r.t_end_series = endmon:times() end
   r.T_over_dt = r.T / r.dt
-  io.write(string.format("  %-28s %4d blocks %6d steps  T/dt = %.0f  cuts %d\n", o.tag, r.blocks,
+  io.write(string.format("  %-28s %4d blocks %6d steps  T/dt = %.0f  cuts %d\n", tag, r.blocks,
                          r.steps, r.T_over_dt, r.cuts))
   m:close()
   return r
+end
+
+-- The exact 1-D answer for Model 1 (jointed_bar_exact.lua: joints every 0.2 m,
+-- each a normal spring k_n = 2 g0 / 0.2 m, the paper's Eq. 4; the bar's speed
+-- sqrt(E/rho)), at the centre, as a run table that wave.incident and
+-- Figure:plot read. opts: g0 (x E, 1), load ("half"), freq (1000), amp,
+-- right ("fixed", "free" or "absorbing"), t_end (s), h (the characteristics'
+-- step, 2e-7 s: peaks to about 1e-4 of the amplitude).
+function wave.exact(o)
+  local exact = require "jointed_bar_exact"
+  local freq, amp = o.freq or 1000, o.amp or wave.A
+  local fn, dur, t_comp, t_tens = wave.load(o.load or "half", freq, amp)
+  local t, rec = exact.run{ length = bars.length, rho = bars.rock.density, E = E, spacing = bars.spacing,
+                            kn = 2 * (o.g0 or 1) * E / bars.spacing, load = function(tt) return -fn(tt) end,
+                            right = o.right or "fixed", receivers = {wave.x_centre}, t_end = o.t_end,
+                            h = o.h or 2e-7 }
+  local c_guess = (o.g0 or 1) >= 10 and 5000 or 4000
+  return { tag = "exact", t = t, sxx = rec[1], T = 1 / freq, dur = dur, t_comp = t_comp, t_tens = t_tens,
+           t_split = 20 / c_guess + dur / 2 }
 end
 
 -- Extreme of vals in [t0, t1]: sign = -1 minimum, +1 maximum, 0 largest magnitude.
@@ -169,7 +198,7 @@ Figure.__index = Figure
 
 function wave.figure(name, title)
   local fig = setmetatable({ name = name, title = title, rows = {}, failures = {}, passes = {},
-                             plots = {}, check = dda.param("check", false) }, Figure)
+                             plots = {}, exact = {}, check = dda.param("check", false) }, Figure)
   io.write(string.format("%s: %s\n", name, title))
   return fig
 end
@@ -180,6 +209,12 @@ function Figure:row(quantity, paper, ours, unit, tdt, note)
                                 unit = unit or "", tdt = tdt, note = note }
   io.write(string.format("  %-52s paper %-10s ours %.6g %s\n", quantity,
                          paper and string.format("%.6g", paper) or "-", ours, unit or ""))
+end
+
+-- The exact 1-D joint physics' value of a row's quantity (wave.exact), for
+-- the report's comparison of the schemes.
+function Figure:exact_value(quantity, value)
+  self.exact[quantity] = value
 end
 
 -- A target: cond true passes. Recorded; with --set check=true a failure raises at finish().
@@ -204,6 +239,7 @@ function Figure:plot(file, runs, labels, field, title)
   local scale, unit, label = 1e-6, "MPa", "sxx at the centre"
   if field == "vx" then scale, unit, label = 1, "m/s", "vx at the centre" end
   if field == "ux" then scale, unit, label = 1e3, "mm", "ux at the right end" end
+  file = file:gsub("%.png$", suffix() .. ".png")
   local path = dda.plot{ file = file, series = series, title = title or self.title, x_label = "time",
                          x_unit = "ms", x_scale = 1e3, y_label = label, y_unit = unit, y_scale = scale,
                          width = 1000, height = 500 }
@@ -229,7 +265,7 @@ end
 
 -- Writes <out>/<name>_numbers.csv; raises when check=true and a target failed.
 function Figure:finish()
-  wave.write_rows(dda.output(self.name .. "_numbers.csv"), self.rows)
+  wave.write_rows(dda.output(self.name .. suffix() .. "_numbers.csv"), self.rows)
   if self.check and #self.failures > 0 then
     error(self.name .. ": targets not met: " .. table.concat(self.failures, "; "), 0)
   end

@@ -91,12 +91,7 @@ TEST(Energy, SlidingBlockDissipatesNormalForceTimesTanPhiTimesSlip) {
   // φ = 20°, 0.5 s of sliding; within 0.5 %.
   World w;
   const double a = deg_to_rad(30), phi = 20;
-  const int rock = w.add_rock_material(test::granite());
-  w.joint_material(0) = JointMaterial{phi, 0, 0};
-  test::add_fixed_base(w, test::rotated(test::rectangle(-10, -1, 20, 1), a), rock);
-  const BlockId b = w.add_block(test::rotated(test::rectangle(2, 0, 1, 0.5), a), rock);
-  w.controls().gravity = Vec2(0, -9.81);
-  w.controls().g1 = 1e-3;
+  const BlockId b = test::block_on_incline(w, a, phi);
   const Vec2 start = w.block_centroid(b), down(-std::cos(a), -std::sin(a));
   while (w.time() < 0.5 - 1e-9) w.step();
   const double slip = (w.block_centroid(b) - start).dot(down);
