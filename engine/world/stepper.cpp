@@ -40,6 +40,7 @@
 #include <cmath>
 
 #include "assembly/contact_terms.hpp"
+#include "assembly/mesh_reduction.hpp"
 #include "contact/broad_phase.hpp"
 #include "core/error.hpp"
 #include "core/memory.hpp"
@@ -187,6 +188,7 @@ void Stepper::start_time_scheme(WorldState& w) {
 void Stepper::set_up_solver(const WorldState& w) {
   const Controls& c = w.controls;
   if (!solver_) solver_ = make_linear_solver(c.solver);
+  use_meshed_solver(solver_, w.blocks);  // meshed blocks: solved for their nodes
   StepSolveInfo info;
   info.blocks = static_cast<int>(w.blocks.count());
   info.block_centroids = w.blocks.centroid;
