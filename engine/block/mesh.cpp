@@ -141,6 +141,14 @@ BlockId element_under(const Blocks& blocks, BlockId b, const Vec2& p) {
   return nearest;
 }
 
+Vec2 mesh_centroid(const Blocks& blocks, int mesh) {
+  Vec2 moment = Vec2::Zero();
+  double area = 0;
+  for (std::size_t e = 0; e < blocks.count(); ++e)
+    if (blocks.mesh[e] == mesh) moment += blocks.area[e] * blocks.centroid[e], area += blocks.area[e];
+  return moment / area;
+}
+
 int mesh_node_count(const Blocks& blocks) {
   int n = 0;
   for (const int id : blocks.node) n = std::max(n, id + 1);

@@ -52,6 +52,9 @@ TriangleMesh mesh_convex_polygon(std::span<const Vec2> outline, double size, con
 // mesh). Points of loads, fixed points and monitors are put on it.
 BlockId element_under(const Blocks& blocks, BlockId b, const Vec2& p);
 
+// The centroid of meshed block `mesh` (its elements' area-weighted centroids).
+Vec2 mesh_centroid(const Blocks& blocks, int mesh);
+
 // The number of mesh nodes (0 when no block is meshed).
 int mesh_node_count(const Blocks& blocks);
 

@@ -153,14 +153,31 @@ BlockId World::append_block(const std::vector<Vec2>& vertices, int rock_material
   return id;
 }
 
+// An element of a meshed block stands for its whole block: the rates are
+// taken about the mesh's centroid and each element gets them about its own
+// (block/mesh.hpp), so the block moves as one body.
 void World::set_block_velocity(BlockId b, const Vec6& v) {
   if (!v.allFinite()) throw Error(msg("block ", b, ": velocity is not finite"));
-  s_.blocks.velocity[check(b)] = v;
+  Blocks& bl = s_.blocks;
+  if (!bl.is_element(check(b))) {
+    bl.velocity[b] = v;
+    return;
+  }
+  const Vec2 c = mesh_centroid(bl, bl.mesh[b]);
+  for (std::size_t e = 0; e < bl.count(); ++e)
+    if (bl.mesh[e] == bl.mesh[b]) {
+      bl.velocity[e] = v;
+      bl.velocity[e].head<2>() = displacement_matrix(bl.centroid[e], c) * v;
+    }
 }
 
 void World::set_block_stress(BlockId b, const Vec3& s) {
   if (!s.allFinite()) throw Error(msg("block ", b, ": stress is not finite"));
-  s_.blocks.stress[check(b)] = s;
+  Blocks& bl = s_.blocks;
+  bl.stress[check(b)] = s;
+  if (bl.is_element(b))
+    for (std::size_t e = 0; e < bl.count(); ++e)
+      if (bl.mesh[e] == bl.mesh[b]) bl.stress[e] = s;
 }
 
 int World::add_point_load(BlockId b, const Vec2& point, const Vec2& force) {

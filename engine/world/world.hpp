@@ -49,7 +49,8 @@ class World {
   BlockId add_block(std::vector<Vec2> vertices, int rock_material, std::vector<int> edge_joints = {},
                     std::vector<EdgeTag> edge_tags = {});
 
-  // Initial conditions.
+  // Initial conditions. On an element of a meshed block they set the whole
+  // block (the velocity's rates about the block's centroid).
   void set_block_velocity(BlockId b, const Vec6& velocity);
   void set_block_stress(BlockId b, const Vec3& stress);
 
