@@ -89,6 +89,13 @@ TriangleMesh mesh_convex_polygon(std::span<const Vec2> v, double size, const std
                       "); meshing handles convex blocks only: give this block's material no mesh size, or cut it "
                       "into convex blocks with a joint line"));
   }
+  // Bad input must not exhaust memory before the first step's memory check:
+  // a block of more than kMaxElements elements is refused here.
+  constexpr double kMaxElements = 4e6;
+  const double across = longest / size;
+  if (across * across * std::max(4, n) > kMaxElements)
+    throw Error(msg(what, ": mesh size ", size, " m would cut this block (edges up to ", longest, " m) into more than ",
+                    kMaxElements, " elements; use a larger mesh size"));
   MeshBuilder mesh(1e-9 * longest);
   if (n == 3) {
     divide_triangle(mesh, v[0], v[1], v[2], divisions(longest, size));

@@ -12,7 +12,8 @@
 //   │  ├─ PredictStates      warm start; first guess of the contact states
 //   │  ├─ open-close loop, until no contact changes state:
 //   │  │  ├─ Assemble        assembly/contact_terms: rows of the changed contacts
-//   │  │  ├─ Solve           solver/: the LinearSolver (PCG or CHOLMOD)
+//   │  │  ├─ Solve           solver/: the LinearSolver (PCG or CHOLMOD; with
+//   │  │  │                  meshed blocks assembly/mesh_reduction, for the nodes)
 //   │  │  └─ CheckContacts   contact/open_close: open, sliding, locked
 //   │  └─ ControlStep        block/motion: g2 bound, contact range, inverted
 //   │                        blocks, penetration → accept, or cut Δt (or widen

@@ -55,6 +55,15 @@ TEST(MeshedBlocks, MesherCoversConvexPolygonsConformingly) {
   EXPECT_EQ(square.nodes.size(), 41u);      // 25 corners, 16 centres
 }
 
+TEST(MeshedBlocks, AMeshTooFineIsRefusedBeforeItIsMade) {
+  try {
+    mesh_convex_polygon(test::rectangle(0, 0, 100, 100), 1e-3, "block 7");
+    FAIL() << "10^10 elements were asked for";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("use a larger mesh size"), std::string::npos) << e.what();
+  }
+}
+
 TEST(MeshedBlocks, ConcaveBlockIsRefusedWithTheCure) {
   World w;
   RockMaterial rock = test::granite();
