@@ -22,6 +22,9 @@ void MeshedSolver::set_blocks(const Blocks& blocks) {
     if (!blocks.is_element(b)) offset_[b] = next, next += 6;
   const int node_base = next;
   unknowns_ = node_base + 2 * nodes_;
+  // Vectors are padded with zeros to whole groups of six: deterministic_dot
+  // sums by six.
+  size_ = (unknowns_ + 5) / 6 * 6;
   // A_e = [T(p1); T(p2); T(p3)]⁻¹ about the element's centroid: the D_e whose
   // field T·D_e takes the nodes' displacements at the corners.
   parallel_for_each(
@@ -76,7 +79,8 @@ void MeshedSolver::expand(const VecX& y, VecX& d) const {
 }
 
 void MeshedSolver::restrict(const VecX& f, VecX& y) const {
-  y.resize(unknowns_);
+  y.resize(size_);
+  y.tail(size_ - unknowns_).setZero();
   parallel_for_each(
       blocks_,
       [&](std::size_t bi) {
@@ -145,7 +149,8 @@ void MeshedSolver::set_up_preconditioner() {
 }
 
 void MeshedSolver::precondition(const VecX& r, VecX& z) const {
-  z.resize(unknowns_);
+  z.resize(size_);
+  z.tail(size_ - unknowns_).setZero();
   parallel_for_each(
       blocks_,
       [&](std::size_t b) {
@@ -164,7 +169,8 @@ SolveReport MeshedSolver::solve(const VecX& b, VecX& x) {
   restrict(b, br_);
   // The initial guess at the free unknowns: first-order blocks as given,
   // each node from its first element's field.
-  xr_.resize(unknowns_);
+  xr_.resize(size_);
+  xr_.tail(size_ - unknowns_).setZero();
   parallel_for_each(
       blocks_,
       [&](std::size_t bi) {

@@ -52,7 +52,7 @@ class MeshedSolver final : public LinearSolver {
   void precondition(const VecX& r, VecX& z) const;
 
   const LinearOperator* a_ = nullptr;
-  int blocks_ = 0, nodes_ = 0, unknowns_ = 0, node_base_ = 0;
+  int blocks_ = 0, nodes_ = 0, unknowns_ = 0, node_base_ = 0, size_ = 0;
   std::vector<int> offset_;                       // per block: its first free unknown (first-order), or -1
   std::vector<std::array<int, 3>> element_node_;  // per block: its nodes (elements)
   std::vector<Mat6> map_;                         // per block: A_e (elements)
