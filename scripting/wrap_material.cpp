@@ -8,17 +8,18 @@ namespace dda::script {
 
 namespace {
 
-// m:rock{density = ρ, E = E, nu = ν} → RockMaterial
+// m:rock{density = ρ, E = E, nu = ν, mesh_size = h (m; blocks meshed, block/mesh.hpp)} → RockMaterial
 int m_rock(lua_State* L) {
   ScriptModel& m = check_model(L, 1, "m:rock");
   check_not_busy(m, "m:rock");
-  const Options o(L, 2, "m:rock", {"density", "E", "nu"});
+  const Options o(L, 2, "m:rock", {"density", "E", "nu", "mesh_size"});
   RockMaterial r;
   r.density = o.positive("density");
   r.youngs = o.positive("E");
   r.poisson = o.number("nu");
   if (r.poisson < 0 || r.poisson >= 0.5)
     fail("m:rock: option 'nu' (Poisson's ratio) must lie in [0, 0.5), got ", r.poisson);
+  r.mesh_size = o.non_negative("mesh_size", 0);
   const int id = m.world().add_rock_material(r);
   push_rock(L, 1, id);
   return 1;
@@ -70,6 +71,8 @@ int rock_index(lua_State* L) {
     lua_pushnumber(L, r.youngs);
   else if (!std::strcmp(k, "nu"))
     lua_pushnumber(L, r.poisson);
+  else if (!std::strcmp(k, "mesh_size"))
+    lua_pushnumber(L, r.mesh_size);
   else if (!std::strcmp(k, "id"))
     lua_pushinteger(L, id);
   else
@@ -92,8 +95,10 @@ int rock_newindex(lua_State* L) {
     r.youngs = check_number(L, 3, call, "the value");
   } else if (k == "nu") {
     r.poisson = check_number(L, 3, call, "the value");
+  } else if (k == "mesh_size") {
+    r.mesh_size = check_number(L, 3, call, "the value");  // blocks added from now on
   } else {
-    fail("rock: unknown field '", k, "' (fields: density, E, nu)");
+    fail("rock: unknown field '", k, "' (fields: density, E, nu, mesh_size)");
   }
   validate(r, id);
   h->model->world().rock_material(id) = r;

@@ -38,12 +38,20 @@ struct Blocks {
   std::vector<int> edge_joint;         // joint material of edge k → k + 1
   std::vector<EdgeTag> edge_tag;       // what edge k → k + 1 was made from
   std::vector<Vec2> initial_centroid;
+  // Meshed blocks (block/mesh.hpp), all three empty while no block is
+  // meshed: per vertex the mesh node it stands on (-1 on a first-order
+  // block), per edge whether it lies inside its mesh (no contact acts on it),
+  // per block the meshed block it is an element of (-1: first-order).
+  std::vector<int> node;
+  std::vector<char> inner_edge;
+  std::vector<int> mesh;
 
   // What a checkpoint holds (core/archive.hpp): every array.
   template <class Archive>
   void fields(Archive& ar) {
     ar(vertex_start, vertices, centroid, area, sxx, syy, sxy, mass, material, stress, velocity, acceleration,
-       out_of_balance, last_displacement, initial_vertices, edge_joint, edge_tag, initial_centroid);
+       out_of_balance, last_displacement, initial_vertices, edge_joint, edge_tag, initial_centroid, node, inner_edge,
+       mesh);
   }
 
   std::size_t count() const { return vertex_start.empty() ? 0 : vertex_start.size() - 1; }
@@ -52,6 +60,8 @@ struct Blocks {
     return std::span<const Vec2>(vertices).subspan(vertex_start[b], vertex_count(b));
   }
   BlockPolygons polygons() const { return {vertex_start, vertices}; }
+  bool has_meshes() const { return !mesh.empty(); }
+  bool is_element(BlockId b) const { return !mesh.empty() && mesh[b] >= 0; }
   // Block b's time-scheme state at the start of a step.
   BlockState scheme_state(BlockId b) const { return {velocity[b], acceleration[b], out_of_balance[b]}; }
 };

@@ -46,6 +46,10 @@ class BlockMotion {
  public:
   BlockMotion(const Vec6& d, const Vec2& centroid)
       : d_(d), centroid_(centroid), cos_minus_1_(std::cos(d[2]) - 1.0), sin_(std::sin(d[2])) {}
+  // T·D itself, the rotation linearised: the motion of a mesh element
+  // (block/mesh.hpp), whose corners are nodes shared with its neighbours and
+  // must move by the nodes' displacement, the same from every element.
+  static BlockMotion linear(const Vec6& d, const Vec2& centroid) { return BlockMotion(d, centroid, 0.0, d[2]); }
   Vec2 operator()(const Vec2& p) const {
     const double x = p.x() - centroid_.x(), y = p.y() - centroid_.y();
     const double c = cos_minus_1_, s = sin_;
@@ -54,6 +58,8 @@ class BlockMotion {
   }
 
  private:
+  BlockMotion(const Vec6& d, const Vec2& centroid, double cos_minus_1, double sin)
+      : d_(d), centroid_(centroid), cos_minus_1_(cos_minus_1), sin_(sin) {}
   Vec6 d_;
   Vec2 centroid_;
   double cos_minus_1_, sin_;

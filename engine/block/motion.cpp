@@ -14,7 +14,8 @@ MotionCheck check_block_motion(const Blocks& blocks, const VecX& d, std::vector<
   inverted.resize(n);
   vertex_motion.resize(blocks.vertices.size());
   const double largest = parallel_max<double>(n, 0.0, [&](std::size_t b) {
-    const BlockMotion motion(d.segment<6>(6 * b), blocks.centroid[b]);
+    const BlockMotion motion = blocks.is_element(b) ? BlockMotion::linear(d.segment<6>(6 * b), blocks.centroid[b])
+                                                    : BlockMotion(d.segment<6>(6 * b), blocks.centroid[b]);
     const int first = blocks.vertex_start[b], count = blocks.vertex_start[b + 1] - first;
     const auto& v = blocks.vertices;
     const Vec2 moved_first = motion(v[first]), moved_second = motion(v[first + 1]);

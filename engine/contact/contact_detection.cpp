@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "contact/broad_phase.hpp"
+#include "contact/mesh_contacts.hpp"
 #include "contact/narrow_phase.hpp"
 #include "core/parallel.hpp"
 
@@ -65,8 +66,10 @@ bool ContactDetection::detect(const Blocks& blocks, double range, std::vector<Co
   }
   NarrowPhaseSettings settings;
   settings.range = kSearchFactor * range;
-  const auto pairs = find_candidate_pairs(polys, settings.range);
+  auto pairs = find_candidate_pairs(polys, settings.range);
+  drop_pairs_inside_meshes(blocks, pairs);
   std::vector<Contact> found = detect_contacts(polys, blocks.edge_joint, pairs, settings);
+  drop_contacts_inside_meshes(blocks, found);
   detected_vertices_ = blocks.vertices;
   rotation_since_detection_.assign(blocks.count(), 0.0);
   detected_range_ = range;

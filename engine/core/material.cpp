@@ -20,6 +20,8 @@ void validate(const RockMaterial& m, int index) {
   if (!std::isfinite(m.poisson)) throw Error(msg(what(), ": Poisson's ratio is not a finite number"));
   if (m.poisson < 0 || m.poisson >= 0.5)
     throw Error(msg(what(), ": Poisson's ratio must lie in [0, 0.5), got ", m.poisson));
+  if (!std::isfinite(m.mesh_size) || m.mesh_size < 0)
+    throw Error(msg(what(), ": mesh size must be zero (first-order blocks) or positive, got ", m.mesh_size));
 }
 
 void validate(const JointMaterial& m, int index) {

@@ -12,9 +12,12 @@ struct RockMaterial {
   double density = 2600;  // kg/m³
   double youngs = 5e9;    // Pa
   double poisson = 0.25;  // -
+  // Element size (m) of the mesh of blocks of this rock (block/mesh.hpp);
+  // 0: the controls' mesh_size.
+  double mesh_size = 0;
   template <class Archive>
   void fields(Archive& ar) {
-    ar(density, youngs, poisson);
+    ar(density, youngs, poisson, mesh_size);
   }
 };
 

@@ -111,6 +111,12 @@ const ControlSpec kControls[] = {
         " up to Shi's 2.5·g2·(half height)",
         "0 (automatic)"),
     number(
+        "mesh_size", [](Controls& c) -> double& { return c.mesh_size; }, kZeroOffOrPositive,
+        "m: blocks added from now on whose rock material has no `mesh_size` of its own are meshed into "
+        "constant-strain triangles of about this size, with continuous displacement inside and contacts"
+        " on the outline (`docs/meshed_blocks.md`); convex blocks only. 0: first-order blocks",
+        "0 (off)"),
+    number(
         "fixed_point_factor", [](Controls& c) -> double& { return c.fixed_point_factor; }, kPositive,
         "fixed-point spring = factor × g0"),
     vector(

@@ -55,7 +55,10 @@ struct Controls {
   // a slope creeps at small Δt); Holding, in which friction holds, opt-in
   // (docs/contacts.md: what is left before it can be the default).
   ContactLaw contact_law = ContactLaw::Shi;
-  double contact_range = 0;         // m; 0 → automatic (contact/contact_detection.hpp)
+  double contact_range = 0;  // m; 0 → automatic (contact/contact_detection.hpp)
+  // Element size (m) of the meshes of blocks added from now on whose rock
+  // material gives none; 0: first-order blocks (block/mesh.hpp).
+  double mesh_size = 0;
   double fixed_point_factor = 100;  // fixed-point spring = factor × g0
   Vec2 gravity = Vec2::Zero();      // m/s²
   double cut_factor = 1.0 / 3.0;    // Δt multiplier when a step is redone

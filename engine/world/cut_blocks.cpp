@@ -25,7 +25,9 @@ std::vector<BlockId> add_cut_blocks(World& world, const geometry::BlockSet& set,
           break;
       }
     }
-    ids.push_back(world.add_block(cb.vertices, cb.rock_material, std::move(joints), cb.edges));
+    // A meshed block adds its elements (block/mesh.hpp): every one is in the set.
+    const BlockId first = world.add_block(cb.vertices, cb.rock_material, std::move(joints), cb.edges);
+    for (auto b = static_cast<std::size_t>(first); b < world.block_count(); ++b) ids.push_back(static_cast<BlockId>(b));
   }
   return ids;
 }

@@ -12,7 +12,8 @@
 //   │  ├─ PredictStates      warm start; first guess of the contact states
 //   │  ├─ open-close loop, until no contact changes state:
 //   │  │  ├─ Assemble        assembly/contact_terms: rows of the changed contacts
-//   │  │  ├─ Solve           solver/: the LinearSolver (PCG or CHOLMOD)
+//   │  │  ├─ Solve           solver/: the LinearSolver (PCG or CHOLMOD; with
+//   │  │  │                  meshed blocks assembly/mesh_reduction, for the nodes)
 //   │  │  └─ CheckContacts   contact/open_close: open, sliding, locked
 //   │  └─ ControlStep        block/motion: g2 bound, contact range, inverted
 //   │                        blocks, penetration → accept, or cut Δt (or widen
@@ -40,6 +41,7 @@
 #include <cmath>
 
 #include "assembly/contact_terms.hpp"
+#include "assembly/mesh_reduction.hpp"
 #include "contact/broad_phase.hpp"
 #include "contact/contact_report.hpp"
 #include "core/error.hpp"
@@ -188,6 +190,7 @@ void Stepper::start_time_scheme(WorldState& w) {
 void Stepper::set_up_solver(const WorldState& w) {
   const Controls& c = w.controls;
   if (!solver_) solver_ = make_linear_solver(c.solver);
+  use_meshed_solver(solver_, w.blocks);  // meshed blocks: solved for their nodes
   StepSolveInfo info;
   info.blocks = static_cast<int>(w.blocks.count());
   info.block_centroids = w.blocks.centroid;

@@ -44,7 +44,7 @@ class Stepper {
     ar(has_solver);
     if constexpr (Archive::reading) {
       solver_ = has_solver ? make_linear_solver(w.controls.solver) : nullptr;
-      if (solver_) solver_->load_state(ar);
+      if (solver_ && !w.blocks.has_meshes()) solver_->load_state(ar);  // a MeshedSolver keeps no state
       system_.set_contacts(static_cast<int>(w.blocks.count()), w.contacts);
     } else if (solver_) {
       solver_->save_state(ar);

@@ -5,6 +5,7 @@
 #include <limits>
 
 #include "block/displacement.hpp"
+#include "block/mesh.hpp"
 #include "core/error.hpp"
 #include "geometry/polygon.hpp"
 #include "world/stepper.hpp"
@@ -79,6 +80,48 @@ BlockId World::add_block(std::vector<Vec2> vertices, int rock_material, std::vec
     reverse_edges(edge_joints);
     reverse_edges(edge_tags);
   }
+  const double mesh_size =
+      s_.rocks[rock_material].mesh_size > 0 ? s_.rocks[rock_material].mesh_size : s_.controls.mesh_size;
+  if (mesh_size > 0) return add_meshed_block(vertices, rock_material, edge_joints, edge_tags, mesh_size, what);
+  return append_block(vertices, rock_material, edge_joints, edge_tags);
+}
+
+// A meshed block: each triangle of its mesh an element block, their corners
+// numbered as shared nodes (block/mesh.hpp); edges on the outline keep the
+// outline edge's joint material and tag.
+BlockId World::add_meshed_block(const std::vector<Vec2>& outline, int rock_material,
+                                const std::vector<int>& edge_joints, const std::vector<EdgeTag>& edge_tags,
+                                double mesh_size, const std::string& what) {
+  const TriangleMesh mesh = mesh_convex_polygon(outline, mesh_size, what);
+  Blocks& bl = s_.blocks;
+  const int first_node = mesh_node_count(bl);
+  int mesh_id = 0;
+  for (const int m : bl.mesh) mesh_id = std::max(mesh_id, m + 1);
+  const BlockId first = static_cast<BlockId>(block_count());
+  for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
+    std::vector<Vec2> corners(3);
+    std::vector<int> joints(3, 0);
+    std::vector<EdgeTag> tags(3);
+    for (int k = 0; k < 3; ++k) {
+      corners[k] = mesh.nodes[mesh.triangles[t][k]];
+      const int edge = mesh.outline_edge[t][k];
+      if (edge >= 0) joints[k] = edge_joints[edge], tags[k] = edge_tags[edge];
+    }
+    const BlockId e = append_block(corners, rock_material, joints, tags);
+    const int start = bl.vertex_start[e];
+    bl.mesh[e] = mesh_id;
+    for (int k = 0; k < 3; ++k) {
+      bl.node[start + k] = first_node + mesh.triangles[t][k];
+      bl.inner_edge[start + k] = mesh.outline_edge[t][k] < 0;
+    }
+  }
+  return first;
+}
+
+// Appends a counter-clockwise polygon, checked, as a first-order block.
+BlockId World::append_block(const std::vector<Vec2>& vertices, int rock_material, const std::vector<int>& edge_joints,
+                            const std::vector<EdgeTag>& edge_tags) {
+  const BlockId id = static_cast<BlockId>(block_count());
   Blocks& bl = s_.blocks;
   const PolygonMoments m = polygon_moments(vertices);
   bl.vertices.insert(bl.vertices.end(), vertices.begin(), vertices.end());
@@ -99,35 +142,59 @@ BlockId World::add_block(std::vector<Vec2> vertices, int rock_material, std::vec
   bl.last_displacement.push_back(Vec6::Zero());
   bl.acceleration.push_back(Vec6::Constant(std::numeric_limits<double>::quiet_NaN()));
   bl.out_of_balance.push_back(Vec6::Zero());
+  // The mesh arrays exist once a block is meshed; first-order blocks then
+  // stand on no node and are no mesh's element.
+  if (bl.has_meshes() || s_.rocks[rock_material].mesh_size > 0 || s_.controls.mesh_size > 0) {
+    bl.node.resize(bl.vertices.size(), -1);
+    bl.inner_edge.resize(bl.vertices.size(), 0);
+    bl.mesh.resize(bl.count(), -1);
+  }
   s_.prepared = false;
   return id;
 }
 
+// An element of a meshed block stands for its whole block: the rates are
+// taken about the mesh's centroid and each element gets them about its own
+// (block/mesh.hpp), so the block moves as one body.
 void World::set_block_velocity(BlockId b, const Vec6& v) {
   if (!v.allFinite()) throw Error(msg("block ", b, ": velocity is not finite"));
-  s_.blocks.velocity[check(b)] = v;
+  Blocks& bl = s_.blocks;
+  if (!bl.is_element(check(b))) {
+    bl.velocity[b] = v;
+    return;
+  }
+  const Vec2 c = mesh_centroid(bl, bl.mesh[b]);
+  for (std::size_t e = 0; e < bl.count(); ++e)
+    if (bl.mesh[e] == bl.mesh[b]) {
+      bl.velocity[e] = v;
+      bl.velocity[e].head<2>() = displacement_matrix(bl.centroid[e], c) * v;
+    }
 }
 
 void World::set_block_stress(BlockId b, const Vec3& s) {
   if (!s.allFinite()) throw Error(msg("block ", b, ": stress is not finite"));
-  s_.blocks.stress[check(b)] = s;
+  Blocks& bl = s_.blocks;
+  bl.stress[check(b)] = s;
+  if (bl.is_element(b))
+    for (std::size_t e = 0; e < bl.count(); ++e)
+      if (bl.mesh[e] == bl.mesh[b]) bl.stress[e] = s;
 }
 
 int World::add_point_load(BlockId b, const Vec2& point, const Vec2& force) {
   check(b);
-  return s_.loads.add_point_load(b, point, force);
+  return s_.loads.add_point_load(element_under(s_.blocks, b, point), point, force);
 }
 void World::set_point_load(int id, const Vec2& force) { s_.loads.set_point_load(id, force); }
 
 int World::add_fixed_point(BlockId b, const Vec2& point) {
   check(b);
-  return s_.boundaries.add_fixed_point(b, point);
+  return s_.boundaries.add_fixed_point(element_under(s_.blocks, b, point), point);
 }
 
 int World::add_tracked_point(BlockId b, const Vec2& point) {
   check(b);
   if (!point.allFinite()) throw Error(msg("tracked point on block ", b, ": point is not finite"));
-  s_.tracked.push_back({b, point, point});
+  s_.tracked.push_back({element_under(s_.blocks, b, point), point, point});
   return static_cast<int>(s_.tracked.size()) - 1;
 }
 
@@ -153,7 +220,7 @@ void World::set_point_load_history(int id, const Vec2& direction, History magnit
 }
 
 int World::add_displacement_target(BlockId b, const Vec2& point, const Vec2& direction) {
-  return s_.boundaries.add_displacement_target(s_.blocks, b, point, direction);
+  return s_.boundaries.add_displacement_target(s_.blocks, element_under(s_.blocks, check(b), point), point, direction);
 }
 void World::set_target_displacement(int id, const Vec2& target) { s_.boundaries.set_target_displacement(id, target); }
 void World::set_target_history(int id, History displacement) {

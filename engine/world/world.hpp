@@ -43,10 +43,14 @@ class World {
   // polygon as given (empty → all 0), edge_tags[k] what that edge was made
   // from (empty → all EdgeKind::Free). Throws dda::Error for a degenerate
   // polygon or an unknown material. (Blocks cut from a domain: add_cut_blocks.)
+  // A block whose rock material (or, failing that, the controls) has a mesh
+  // size is meshed (block/mesh.hpp): its elements are added as blocks, and
+  // the first element's id is returned.
   BlockId add_block(std::vector<Vec2> vertices, int rock_material, std::vector<int> edge_joints = {},
                     std::vector<EdgeTag> edge_tags = {});
 
-  // Initial conditions.
+  // Initial conditions. On an element of a meshed block they set the whole
+  // block (the velocity's rates about the block's centroid).
   void set_block_velocity(BlockId b, const Vec6& velocity);
   void set_block_stress(BlockId b, const Vec3& stress);
 
@@ -165,6 +169,10 @@ class World {
 
  private:
   BlockId check(BlockId b) const;
+  BlockId append_block(const std::vector<Vec2>& vertices, int rock_material, const std::vector<int>& edge_joints,
+                       const std::vector<EdgeTag>& edge_tags);
+  BlockId add_meshed_block(const std::vector<Vec2>& outline, int rock_material, const std::vector<int>& edge_joints,
+                           const std::vector<EdgeTag>& edge_tags, double mesh_size, const std::string& what);
 
   WorldState s_;
   std::unique_ptr<Stepper> stepper_;  // scratch reused from step to step

@@ -65,7 +65,9 @@ end
 -- freq (1000), amp (5e6), phi (40), c (8e6), tension (8e6), right ("fixed"),
 -- p (x E), per_length (true), t_end (s), end_monitor (false), integrator ("shi"),
 -- rho_inf (generalized-α's spectral radius at infinity; the engine's default when nil),
--- dt (g1, 2e-6 s), at (the monitor point, bars.centre).
+-- dt (g1, 2e-6 s), at (the monitor point, bars.centre), mesh_size (m, the blocks
+-- meshed; nil: first-order blocks), kn (the joints' stiffness, Pa/m; nil: from g0), nu (the
+-- rock's Poisson's ratio; nil: bars.rock's 0.25).
 function wave.run(o)
   local model = o.model or 1
   local freq, amp = o.freq or 1000, o.amp or wave.A
@@ -75,8 +77,9 @@ function wave.run(o)
   local scheme = o.integrator and o or wave.scheme or {}
   local m = dda.model{ plane = "stress", g0 = g0, g1 = o.dt or 2e-6, g2 = 0.005, gg = 1,
                        integrator = scheme.integrator or "shi", rho_inf = scheme.rho_inf, contact_law = "shi" }
-  local rock = m:rock(bars.rock)
-  local joint = m:joint{ friction = o.phi or 40, cohesion = o.c or 8e6, tension = o.tension or 8e6 }
+  -- mesh_size: blocks meshed (docs/meshed_blocks.md); kn: the joints' own stiffness (Pa/m).
+  local rock = m:rock{ density = bars.rock.density, E = bars.rock.E, nu = o.nu or bars.rock.nu, mesh_size = o.mesh_size }
+  local joint = m:joint{ friction = o.phi or 40, cohesion = o.c or 8e6, tension = o.tension or 8e6, kn = o.kn }
   local blocks = bars.build(m, model, rock, joint)
   local fn, dur, t_comp, t_tens = wave.load(o.load or "half", freq, amp)
   bars.left_end(m):pressure(fn)

@@ -254,4 +254,23 @@ TEST(Checkpoint, WrongTruncatedDamagedOrNewerFilesAreRefused) {
   EXPECT_NO_THROW(checkpoint_from_bytes(with_format(kCheckpointFormat), "checkpoint 'x'"));
 }
 
+TEST(Checkpoint, MeshedBlocksContinueBitForBit) {
+  // A meshed block (its nodes, inner edges and mesh ids; docs/meshed_blocks.md)
+  // dropped onto a fixed base under the second-order scheme.
+  const auto scene = [] {
+    World w;
+    w.controls().gravity = Vec2(0, -9.81);
+    w.controls().g1 = 1e-3;
+    w.controls().integrator = Integrator::Newmark;
+    const int base = w.add_rock_material(test::granite());
+    RockMaterial meshed = test::granite();
+    meshed.mesh_size = 0.25;
+    const int rock = w.add_rock_material(meshed);
+    test::add_fixed_base(w, test::rectangle(-1, -1, 3, 1), base);
+    w.add_block(test::rectangle(0, 0.001, 1, 0.5), rock);
+    return w;
+  };
+  expect_restart_exact(scene, 12, 12);
+}
+
 }  // namespace dda

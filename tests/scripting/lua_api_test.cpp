@@ -192,6 +192,26 @@ TEST_F(LuaApi, EnergyBudgetOfAFreeFall) {
             std::string::npos);
 }
 
+// A meshed block (docs/meshed_blocks.md) from Lua: the rock's mesh_size cuts
+// it into elements, each a block; a monitor reads the element under its
+// point (its stress differs from the far elements' under a corner load).
+TEST_F(LuaApi, MonitorOnAMeshedBlockReadsTheElementUnderThePoint) {
+  run("m = dda.model{ g1 = 1e-4, integrator = 'newmark' }\n"
+      "rock = m:rock{ density = 2000, E = 1e9, nu = 0.25, mesh_size = 0.25 }\n"
+      "m:add_block{ {0, 0}, {1, 0}, {1, 1}, {0, 1}, rock = rock }\n"
+      "m:point_load{ at = {0.95, 0.9}, force = {-1e6, 0} }\n"
+      "mon = m:monitor{ at = {0.8, 0.85}, fields = {'sxx'} }\n"
+      "m:step(5)\n"
+      "count = m:block_count()\n"
+      "got = mon:value('sxx')\n"
+      "under = m:block_at(0.8, 0.85):stress()\n"
+      "far = m:block_at(0.1, 0.1):stress()\n");
+  EXPECT_EQ(number("count"), 64);  // 4 × 4 cells, four triangles each
+  EXPECT_EQ(number("got"), number("under"));
+  EXPECT_NE(number("got"), 0);
+  EXPECT_GT(std::abs(number("got")), 10 * std::abs(number("far")));
+}
+
 TEST_F(LuaApi, MonitorsRecordEveryNSteps) {
   run("m = dda.model{ gravity = {0, -10}, g1 = 0.01, g2 = 0.5 }\n"
       "rock = m:rock{ density = 1000, E = 1e9, nu = 0.25 }\n"

@@ -1,0 +1,61 @@
+#pragma once
+// Meshed (deformable) blocks: a block given a mesh size is cut into
+// constant-strain triangles (CST) whose corners are shared mesh nodes.
+//
+// A CST's displacement field is linear, exactly the first-order DDA field
+// T(x, y)·D of a triangle: each element is stored as a block of its own
+// (Blocks: its outline, centroid, moments, stress, time-scheme state), so
+// contacts, loads, boundaries, output and monitors treat it as any block.
+// What makes the elements one deformable block is that their six DDA
+// unknowns are not free: D_e = A_e·u_e, u_e the displacements of the
+// element's three nodes and A_e = [T(p1); T(p2); T(p3)]⁻¹ (the 6×6 matrix
+// that puts T through the three corners). Neighbouring elements share the
+// nodes, so the displacement is continuous inside the block: no springs and
+// no joints between the elements. The step solves for the nodes
+// (assembly/mesh_reduction.hpp) and hands each element its D_e; the rest of
+// the step reads D_e as it reads a first-order block's D.
+//
+// Contacts stay on the block's outline: elements of one mesh never contact
+// each other, an edge inside a mesh carries no contact, and a vertex makes
+// contacts only from an element with an outline edge at it (mesh_contacts.cpp).
+//
+// The mesher (mesh_convex_polygon) is structured and handles convex blocks:
+// a triangle is divided into m² similar triangles, a quadrilateral into a
+// bilinear grid of cells split along alternating diagonals, a convex polygon
+// of five or more corners into a fan from its centroid whose triangles are
+// divided alike (docs/meshed_blocks.md says why not CGAL yet).
+#include <array>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "block/blocks.hpp"
+#include "core/types.hpp"
+
+namespace dda {
+
+struct TriangleMesh {
+  std::vector<Vec2> nodes;
+  std::vector<std::array<int, 3>> triangles;  // node ids, counter-clockwise
+  // Per triangle edge k (its node k → k + 1): the outline edge it lies on,
+  // or -1 for an edge inside the polygon.
+  std::vector<std::array<int, 3>> outline_edge;
+};
+
+// Meshes a convex polygon (counter-clockwise) with triangles of edges no
+// longer than about `size`. Throws dda::Error naming `what` when the polygon
+// is not convex or the size is not positive.
+TriangleMesh mesh_convex_polygon(std::span<const Vec2> outline, double size, const std::string& what);
+
+// The element of block b's mesh whose outline holds p (b itself when it is
+// not meshed, or when no element holds p: then the nearest element of its
+// mesh). Points of loads, fixed points and monitors are put on it.
+BlockId element_under(const Blocks& blocks, BlockId b, const Vec2& p);
+
+// The centroid of meshed block `mesh` (its elements' area-weighted centroids).
+Vec2 mesh_centroid(const Blocks& blocks, int mesh);
+
+// The number of mesh nodes (0 when no block is meshed).
+int mesh_node_count(const Blocks& blocks);
+
+}  // namespace dda
