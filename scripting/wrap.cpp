@@ -328,6 +328,8 @@ void push_stats(lua_State* L, const StepStats& s) {
   lua_pushstring(L, s.solver);
   lua_setfield(L, -2, "solver");
   integer("factorisations", s.factorisations);
+  lua_pushstring(L, s.solve_regime);
+  lua_setfield(L, -2, "solve_regime");
   integer("step_cuts", s.step_cuts);
   lua_pushstring(L, s.cut_reason.c_str());
   lua_setfield(L, -2, "cut_reason");

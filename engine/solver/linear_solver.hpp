@@ -53,8 +53,9 @@ struct StepSolveInfo {
   // their springs (wave problems), not where solves are long (walls).
   bool local_resolves = false;
   // The previous step's solves and their iterations in all (0 before the
-  // first step): the same for any thread count, so choices made from them
-  // keep results independent of the threads.
+  // first step; after choose_backend, of the last step solved the way this
+  // one is): the same for any thread count, so choices made from them keep
+  // results independent of the threads.
   int last_step_solves = 0;
   long last_step_iterations = 0;
 };
@@ -62,6 +63,13 @@ struct StepSolveInfo {
 class LinearSolver {
  public:
   virtual ~LinearSolver() = default;
+  // Once per step, first: a solver with more than one backend (AutoSolver)
+  // settles which one the step solves with, and returns `info` with the last
+  // step's counts replaced by those of the last step solved that way. The
+  // step's solve regime (world/solve_regime.hpp) is chosen from them: the
+  // previous step's few iterations with a factor say nothing of a PCG step.
+  // The default keeps the counts.
+  virtual StepSolveInfo choose_backend(const SolverSettings& /*settings*/, const StepSolveInfo& info) { return info; }
   // Once per step, before its solves: the settings (each backend reads its
   // own part) and what the step knows of its solves. The default ignores both.
   virtual void begin_step(const SolverSettings& /*settings*/, const StepSolveInfo& /*info*/) {}

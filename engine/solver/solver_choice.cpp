@@ -28,24 +28,30 @@ void AutoSolver::load_state(ArchiveReader& ar) {
   }
 }
 
-void AutoSolver::begin_step(const SolverSettings& settings, const StepSolveInfo& info) {
+StepSolveInfo AutoSolver::choose_backend(const SolverSettings& settings, const StepSolveInfo& info) {
   const bool last_on_pcg = !on_direct_;
   choose(info);
   if (settings.kind != SolverKind::Auto) on_direct_ = settings.kind == SolverKind::Cholmod;
   solves_ = factorisations_ = 0;
   iterations_ = 0;
+  // Back on PCG after the factor: the last PCG step's counts, for the solve
+  // regime and the PCG's preconditioner. (The factor's first step keeps the
+  // last PCG step's: it has none of its own.)
+  StepSolveInfo own = info;
+  if (!on_direct_ && !last_on_pcg) {
+    own.last_step_solves = pcg_solves_;
+    own.last_step_iterations = pcg_iterations_;
+  }
+  return own;
+}
+
+void AutoSolver::begin_step(const SolverSettings& settings, const StepSolveInfo& info) {
   if (on_direct_) {
     if (!direct_) direct_ = std::make_unique<CholmodSolver>();
     direct_->begin_step(settings, info);
     return;
   }
-  // The PCG chooses its preconditioner from its own last step.
-  StepSolveInfo own = info;
-  if (!last_on_pcg) {
-    own.last_step_solves = pcg_solves_;
-    own.last_step_iterations = pcg_iterations_;
-  }
-  pcg_.begin_step(settings, own);
+  pcg_.begin_step(settings, info);
 }
 
 // Closes the books on the step just done (its counts) and picks the backend

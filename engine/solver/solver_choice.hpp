@@ -27,6 +27,9 @@
 //      counted as spread over kRetrySteps steps: it serves every step the
 //      factor is kept, and on large systems it would otherwise outweigh the
 //      trial (wall(200)).
+//   3. The step back to PCG reports the last PCG step's counts
+//      (choose_backend), so it is solved in the long-solve regime of the PCG
+//      steps, not in the short one the factor's few iterations would choose.
 //
 // Counts, not seconds: seconds depend on the machine's load, and the choice
 // changes the answer within the solver tolerance, so a choice from timings
@@ -42,6 +45,7 @@ namespace dda {
 class AutoSolver final : public LinearSolver {
  public:
   AutoSolver();
+  StepSolveInfo choose_backend(const SolverSettings& settings, const StepSolveInfo& info) override;
   void begin_step(const SolverSettings& settings, const StepSolveInfo& info) override;
   void set_operator(const LinearOperator& a) override { current().set_operator(a); }
   SolveReport solve(const VecX& b, VecX& x) override;
@@ -81,8 +85,8 @@ class AutoSolver final : public LinearSolver {
   // This step's counts.
   int solves_ = 0, factorisations_ = 0;
   long iterations_ = 0;
-  // The last PCG step: its work, and its counts for the PCG's own
-  // preconditioner choice (StepSolveInfo).
+  // The last PCG step: its work, and its counts for the solve regime and
+  // the PCG's own preconditioner choice (StepSolveInfo).
   double pcg_work_ = 0;
   int pcg_solves_ = 0;
   long pcg_iterations_ = 0;

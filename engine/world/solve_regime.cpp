@@ -22,9 +22,9 @@ namespace dda {
 // of different solves.) Static analysis after long solves accepts
 // cg_static_tolerance (see Controls): there the loose solves' friction lag
 // is the larger error.
-SolveRegime SolveRegime::choose(const Controls& c, const StepStats& previous) {
-  const bool long_solves = previous.open_close_iterations > 0 &&
-                           previous.cg_iterations > kLongSolveIterations * previous.open_close_iterations;
+SolveRegime SolveRegime::choose(const Controls& c, const StepSolveInfo& solves) {
+  const bool long_solves = solves.last_step_solves > 0 && static_cast<double>(solves.last_step_iterations) >
+                                                              kLongSolveIterations * solves.last_step_solves;
   SolveRegime r;
   r.kind = long_solves ? Kind::LongSolves : Kind::ShortSolves;
   r.extrapolate_warm_start = !long_solves;

@@ -4,11 +4,13 @@
 // short (wave problems: the blocks' inertia dominates their springs, a few
 // CG iterations per solve) and where they are long (quasi-static walls:
 // contacts and elasticity dominate, hundreds). Which regime a step is in is
-// read off the previous step: over kLongSolveIterations CG iterations per
-// solve is long. The count is the same for any thread count, so the choice
-// keeps results independent of the threads. A solver that takes one
-// iteration per solve (a direct factorisation) is always in the short
-// regime, where the warm start and state prediction still pay.
+// read off the last step solved with the backend this step uses
+// (LinearSolver::choose_backend: after the factor, the last PCG step): over
+// kLongSolveIterations CG iterations per solve is long. The count is the same
+// for any thread count, so the choice keeps results independent of the
+// threads. A solver that takes one iteration per solve (a direct
+// factorisation) is in the short regime after its first step, where the warm
+// start and state prediction still pay.
 //
 //                        short solves                 long solves
 //   warm start           the last step's motion       the last step's
@@ -24,14 +26,15 @@
 //   system product       matrix-free contact springs  stored 6×6 blocks (the mat-vec
 //                                                     dominates)
 //   local re-solves      yes (PCG patches)            no (a local change reaches far)
+#include "solver/linear_solver.hpp"
 #include "world/controls.hpp"
-#include "world/step_profile.hpp"
 
 namespace dda {
 
 struct SolveRegime {
   enum class Kind { ShortSolves, LongSolves };
   Kind kind = Kind::ShortSolves;
+  const char* name() const { return kind == Kind::LongSolves ? "long" : "short"; }  // StepStats::solve_regime
   bool extrapolate_warm_start = true;
   bool predict_states = true;
   double open_close_tolerance = 0;  // of the solves while contact states still change
@@ -39,11 +42,12 @@ struct SolveRegime {
   bool stored_products = false;     // multiply with stored 6×6 blocks (ContactOperator::store_products)
   bool local_resolves = true;       // the solver may re-solve locally after a local change
 
-  static constexpr double kLongSolveIterations = 30;  // CG iterations per solve in the previous step
+  static constexpr double kLongSolveIterations = 30;  // CG iterations per solve in the last step
 
-  // The regime for the step after `previous` (an empty StepStats before the
-  // first step: short solves).
-  static SolveRegime choose(const Controls& controls, const StepStats& previous);
+  // The regime of the step the solver chose its backend for (`solves`:
+  // LinearSolver::choose_backend's; no solves yet, before the first step:
+  // short solves).
+  static SolveRegime choose(const Controls& controls, const StepSolveInfo& solves);
 };
 
 }  // namespace dda

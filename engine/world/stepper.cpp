@@ -4,8 +4,9 @@
 //   ├─ check_new_model       once per set of blocks: no overlaps, the g2 length
 //   ├─ begin_step            validate controls; derive automatic g0, g1;
 //   │                        threads; material constants; the time scheme
-//   │                        (and the state of new blocks); the solve regime
-//   │                        (solve_regime.hpp) and the linear solver
+//   │                        (and the state of new blocks); the linear
+//   │                        solver's backend, then the solve regime
+//   │                        (solve_regime.hpp) from that backend's last step
 //   ├─ DetectContacts        contact/contact_detection: search or reuse the list
 //   ├─ attempt, until one is accepted:
 //   │  ├─ Assemble           assembly/block_terms, loading/, boundary/ at t + Δt
@@ -140,7 +141,6 @@ void Stepper::begin_step(WorldState& w) {
   set_up_threads(w.controls);
   derive_material_constants(w);
   start_time_scheme(w);
-  regime_ = SolveRegime::choose(w.controls, w.last_stats);
   set_up_solver(w);
 }
 
@@ -186,7 +186,8 @@ void Stepper::start_time_scheme(WorldState& w) {
   start_time_scheme_state(blocks, w.controls.gravity, loads);
 }
 
-// The linear solver, told once per step what the step's solves are like.
+// The linear solver picks its backend, the step's solve regime follows from
+// that backend's last step, and the solver is told what the solves are like.
 void Stepper::set_up_solver(const WorldState& w) {
   const Controls& c = w.controls;
   if (!solver_) solver_ = make_linear_solver(c.solver);
@@ -194,11 +195,14 @@ void Stepper::set_up_solver(const WorldState& w) {
   StepSolveInfo info;
   info.blocks = static_cast<int>(w.blocks.count());
   info.block_centroids = w.blocks.centroid;
-  info.local_resolves = regime_.local_resolves;
   info.last_step_solves = w.last_stats.open_close_iterations;
   info.last_step_iterations = w.last_stats.cg_iterations;
+  info = solver_->choose_backend(c.solver, info);
+  regime_ = SolveRegime::choose(c, info);
+  info.local_resolves = regime_.local_resolves;
   solver_->begin_step(c.solver, info);
   stats_.solver = solver_->name();
+  stats_.solve_regime = regime_.name();
   solver_->max_iterations =
       c.cg_max_iterations > 0 ? c.cg_max_iterations : static_cast<int>(60 * w.blocks.count() + 100);
   system_.store_products(regime_.stored_products);

@@ -225,3 +225,30 @@ TEST(SolverChoice, WallsMoveToTheFactorAndWavesKeepPcg) {
   bar.controls().threads = 1;
   for (int s = 0; s < 10; ++s) EXPECT_EQ(std::string(bar.step().solver), "pcg") << "step " << s + 1;
 }
+
+// wall(30), quasi-static: Auto tries the factor from step 3 and goes back to
+// PCG at step 8 (the factor's counted work exceeds PCG's at the default
+// contact tolerance). The step back on PCG must be in the long-solve regime
+// of the PCG steps before the trial (solve_regime.hpp), not in the short one
+// that the factor's 1–5 CG iterations a solve would choose: there every
+// open-close solve is tight, and wall(40)'s first PCG step after the factor
+// took 1,292 CG iterations against 261–329 in the PCG steps around it.
+TEST(SolverChoice, StepBackOnPcgAfterTheFactorSolvesInTheLongRegime) {
+  World wall = test::brick_wall(30);
+  wall.controls().threads = 1;
+  std::string last_solver;
+  int back_on_pcg = 0;
+  for (int s = 1; s <= 10 && back_on_pcg == 0; ++s) {
+    const StepStats stats = wall.step();
+    if (last_solver == "cholmod" && std::string(stats.solver) == "pcg") {
+      back_on_pcg = s;
+      EXPECT_EQ(std::string(stats.solve_regime), "long")
+          << "step " << s << ": " << stats.cg_iterations << " CG iterations in " << stats.open_close_iterations
+          << " open-close iterations";
+    } else if (std::string(stats.solver) == "cholmod" && last_solver == "cholmod") {
+      EXPECT_EQ(std::string(stats.solve_regime), "short") << "step " << s << " (the factor)";
+    }
+    last_solver = stats.solver;
+  }
+  EXPECT_GT(back_on_pcg, 0) << "Auto kept the factor on wall(30): this test needs a model where it goes back to PCG";
+}
