@@ -34,13 +34,7 @@ const ContactLaw kLaws[] = {ContactLaw::Shi, ContactLaw::Holding};
 const ContactLaw kShiOnly[] = {ContactLaw::Shi};
 const char* name(ContactLaw law) { return law == ContactLaw::Shi ? "shi" : "holding"; }
 
-// A block held at every vertex.
-BlockId add_fixed_block(World& w, const std::vector<Vec2>& outline, int rock) {
-  const BlockId b = w.add_block(outline, rock);
-  const std::vector<Vec2> corners(w.block_vertices(b).begin(), w.block_vertices(b).end());
-  for (const Vec2& v : corners) w.add_fixed_point(b, v);
-  return b;
-}
+using test::add_fixed_block;
 
 // The deepest overlap of any two blocks: the largest distance of a vertex of
 // one inside another (0 when none is inside).
@@ -406,45 +400,29 @@ TEST(ContactTransfer, StallMessageNamesTheContactAndATrueCure) {
   EXPECT_NO_THROW(for (int i = 0; i < 50; ++i) stiff.step()) << message;
 }
 
-// Aligned corners that slide apart (docs/contacts.md): two blocks end to end
-// along a horizontal joint, a fixed base on the left and a free block B on
-// the right (on a fixed foundation), their tops on one line. A block A on the
-// base, its bottom-right corner at the joint where B's top begins (its bottom
-// edge and B's top edge meet end to end: no contact between them), slides
-// right at 1 m/s without friction, over B. Its top overhangs to the right,
-// so its weight's line passes the base's corner after 0.22 m: from then on
-// it rests on B. The search range is fixed wide (0.6 m: a vertex moves 0.3 m
-// before the list is searched again for that alone), as in a model of large
-// blocks. Reference: A's bottom is carried by B's top as soon as it overlaps
-// it: no vertex sinks into another block by more than twice its weight on
-// one contact spring, 2·m·g/g0 (a static load applied at once: 0.3 µm), and
-// B stays at rest: its speed below 1 cm/s, the bound twice the speed of its
-// own landing from the 1 µm gap it starts above its foundation,
-// sqrt(2·g·1e-6) = 4.4 mm/s (A's weight settles it by a fraction of a
-// micrometre). Without the watch on aligned edges (narrow_phase.hpp) A
-// tipped about the base's corner, its corner sank 0.68 mm into B unresisted
-// until A had turned 0.005 rad, and the search that followed threw B at
-// 0.2 m/s (Shi's law) and 0.39 m/s ("holding").
+// Aligned corners that slide apart (docs/contacts.md): the scene
+// test::block_sliding_past_aligned_corner. Block A on a fixed base, its
+// bottom-right corner at a joint where the top of a free block B begins (its
+// bottom edge and B's top edge meet end to end: no contact between them),
+// slides right at 1 m/s without friction, over B. Its top overhangs to the
+// right, so its weight's line passes the base's corner after 0.22 m: from
+// then on it rests on B. The search range is fixed wide (0.6 m). Reference:
+// A's bottom is carried by B's top as soon as it overlaps it: no vertex sinks
+// into another block by more than the heaviest load one contact spring can
+// carry, A's and B's weight on B's foundation, applied at once,
+// 2·(m_A + m_B)·g/g0 (0.7 µm), and B stays at rest: its speed below 1 cm/s,
+// the bound twice the speed of its own landing from the 1 µm gap it starts
+// above its foundation, sqrt(2·g·1e-6) = 4.4 mm/s (A's weight settles it by
+// a fraction of a micrometre). Without the watch on aligned edges
+// (narrow_phase.hpp) A tipped about the base's corner, its corner sank
+// 0.68 mm into B unresisted until A had turned 0.005 rad, and the search that
+// followed threw B at 0.2 m/s (Shi's law) and 0.39 m/s ("holding").
 TEST(ContactTransfer, BlockSlidingPastAnAlignedCornerIsCarriedWithoutAKick) {
   for (const ContactLaw law : kLaws) {
-    World w;
-    const int rock = w.add_rock_material(test::granite());
-    w.joint_material(0) = JointMaterial{0, 0, 0};
-    add_fixed_block(w, test::rectangle(-3, -1, 3, 1), rock);                   // the base, top at y = 0
-    add_fixed_block(w, test::rectangle(0, -2, 3, 1), rock);                    // B's foundation
-    const BlockId b = w.add_block(test::rectangle(0, -1 + 1e-6, 2, 1), rock);  // top at y = 1e-6
-    const BlockId a = w.add_block({{-1, 2e-6}, {0, 2e-6}, {1, 1}, {-1, 1}}, rock);
-    Controls& c = w.controls();
-    c.gravity = Vec2(0, -kG);
-    c.g1 = 1e-3;
-    c.g2 = 0.01;
-    c.g0 = 50 * test::granite().youngs;
-    c.contact_law = law;
-    c.contact_range = 0.6;
-    Vec6 push = Vec6::Zero();
-    push[0] = 1.0;
-    w.set_block_velocity(a, push);
-    const double weight_depth = 2 * w.block_mass(a) * kG / c.g0;
+    World w = test::block_sliding_past_aligned_corner(law);
+    const BlockId b = 2, a = 3;
+    const Controls& c = w.controls();
+    const double weight_depth = 2 * (w.block_mass(a) + w.block_mass(b)) * kG / c.g0;
     double overlap = 0, b_speed = 0;
     while (w.time() < 0.6) {
       w.step();
