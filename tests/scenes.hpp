@@ -104,4 +104,42 @@ inline World kicked_bar(int columns, int rows, double size = 0.2) {
   return w;
 }
 
+// A block held at every vertex.
+inline BlockId add_fixed_block(World& w, const std::vector<Vec2>& outline, int rock) {
+  const BlockId b = w.add_block(outline, rock);
+  const std::vector<Vec2> corners(w.block_vertices(b).begin(), w.block_vertices(b).end());
+  for (const Vec2& v : corners) w.add_fixed_point(b, v);
+  return b;
+}
+
+// Aligned corners that slide apart (docs/contacts.md): two blocks end to end
+// along a horizontal joint, a fixed base on the left (top at y = 0) and a free
+// 2 m × 1 m block B on the right (block 2, on a fixed foundation, 1 µm above
+// it), their tops on one line. Block A (block 3) on the base, its bottom edge
+// meeting B's top edge end to end at x = 0 and its top overhanging to the
+// right (its weight's line passes the base's corner after 0.22 m), is pushed
+// right at 1 m/s, without friction, over B. Granite, g0 = 50 E, Δt = 1 ms,
+// g2 = 0.01, the search range fixed at 0.6 m (a vertex moves 0.3 m before the
+// list is searched again for that alone, as in a model of large blocks).
+inline World block_sliding_past_aligned_corner(ContactLaw law) {
+  World w;
+  const int rock = w.add_rock_material(granite());
+  w.joint_material(0) = JointMaterial{0, 0, 0};
+  add_fixed_block(w, rectangle(-3, -1, 3, 1), rock);  // the base
+  add_fixed_block(w, rectangle(0, -2, 3, 1), rock);   // B's foundation
+  w.add_block(rectangle(0, -1 + 1e-6, 2, 1), rock);   // B: top at y = 1e-6
+  const BlockId a = w.add_block({{-1, 2e-6}, {0, 2e-6}, {1, 1}, {-1, 1}}, rock);
+  Controls& c = w.controls();
+  c.gravity = Vec2(0, -9.81);
+  c.g1 = 1e-3;
+  c.g2 = 0.01;
+  c.g0 = 50 * granite().youngs;
+  c.contact_law = law;
+  c.contact_range = 0.6;
+  Vec6 push = Vec6::Zero();
+  push[0] = 1.0;
+  w.set_block_velocity(a, push);
+  return w;
+}
+
 }  // namespace dda::test

@@ -56,7 +56,12 @@ bool ContactDetection::detect(const Blocks& blocks, double range, std::vector<Co
   const bool left_an_edge = parallel_max<int>(contacts.size(), 0, [&](std::size_t i) {
                               return passed_corner(polys, contacts[i]) || slid_past_end(polys, contacts[i]) ? 1 : 0;
                             }) != 0;
-  if (!left_an_edge && !list_is_stale(blocks, range)) {
+  // Aligned edges slid past each other's corner: their contacts are missing
+  // or too weak (narrow_phase.hpp).
+  const bool aligned_slid = parallel_max<int>(aligned_.size(), 0, [&](std::size_t i) {
+                              return aligned_edges_slid(polys, aligned_[i]) ? 1 : 0;
+                            }) != 0;
+  if (!left_an_edge && !aligned_slid && !list_is_stale(blocks, range)) {
     // Same contacts: refresh their linearisation from the current geometry.
     lin.gradients.resize(contacts.size());
     lin.offsets.resize(contacts.size());
@@ -68,7 +73,7 @@ bool ContactDetection::detect(const Blocks& blocks, double range, std::vector<Co
   settings.range = kSearchFactor * range;
   auto pairs = find_candidate_pairs(polys, settings.range);
   drop_pairs_inside_meshes(blocks, pairs);
-  std::vector<Contact> found = detect_contacts(polys, blocks.edge_joint, pairs, settings);
+  std::vector<Contact> found = detect_contacts(polys, blocks.edge_joint, pairs, settings, &aligned_);
   drop_contacts_inside_meshes(blocks, found);
   detected_vertices_ = blocks.vertices;
   rotation_since_detection_.assign(blocks.count(), 0.0);

@@ -6,14 +6,20 @@
 // list is reused until a vertex has moved half the difference, or a block
 // turned by kRedetectRotation, since the last search (a Verlet list): no
 // contact that can close in the step is missed, and wave problems, whose
-// blocks move micrometres, search once. The linearisation is refreshed every
-// step.
+// blocks move micrometres, search once. The list is also searched again when
+// a contact's vertex has left its edge (contact transfer) and when aligned
+// edges that met end to end at the search have slid along their line past
+// each other's corner (AlignedEdges, narrow_phase.hpp): the search left them
+// without a contact, or with one scaled by their short overlap, and a
+// vertex would otherwise sink unresisted into the other block's edge
+// (docs/contacts.md). The linearisation is refreshed every step.
 #include <span>
 #include <vector>
 
 #include "block/blocks.hpp"
 #include "contact/contact.hpp"
 #include "contact/contact_law.hpp"
+#include "contact/narrow_phase.hpp"
 
 namespace dda {
 
@@ -50,7 +56,7 @@ class ContactDetection {
   // list's staleness is measured from.
   template <class Archive>
   void fields(Archive& ar) {
-    ar(auto_range_, first_detection_, detected_vertices_, rotation_since_detection_, detected_range_);
+    ar(auto_range_, first_detection_, detected_vertices_, rotation_since_detection_, detected_range_, aligned_);
   }
 
  private:
@@ -61,6 +67,7 @@ class ContactDetection {
   std::vector<Vec2> detected_vertices_;
   std::vector<double> rotation_since_detection_;
   double detected_range_ = 0;
+  std::vector<AlignedEdges> aligned_;  // aligned edges at the last search, watched for sliding
 };
 
 }  // namespace dda

@@ -24,6 +24,17 @@ struct EdgeTable {
   std::vector<char> convex;
 };
 
+Edge make_edge(const BlockPolygons& blocks, int b, int k) {
+  Edge e;
+  e.p0 = blocks.vertex(b, k);
+  e.p1 = blocks.vertex(b, k + 1);
+  const Vec2 d = e.p1 - e.p0;
+  e.length = d.norm();
+  e.t = d / e.length;
+  e.n = Vec2(e.t.y(), -e.t.x());
+  return e;
+}
+
 EdgeTable make_edge_table(const BlockPolygons& blocks) {
   EdgeTable table;
   table.edge.resize(blocks.vertices.size());
@@ -33,13 +44,7 @@ EdgeTable make_edge_table(const BlockPolygons& blocks) {
       [&](std::size_t bi) {
         const int b = static_cast<int>(bi);
         for (int k = 0; k < blocks.size(b); ++k) {
-          Edge& e = table.edge[blocks.start[b] + k];
-          e.p0 = blocks.vertex(b, k);
-          e.p1 = blocks.vertex(b, k + 1);
-          const Vec2 d = e.p1 - e.p0;
-          e.length = d.norm();
-          e.t = d / e.length;
-          e.n = Vec2(e.t.y(), -e.t.x());
+          table.edge[blocks.start[b] + k] = make_edge(blocks, b, k);
           const Vec2& v = blocks.vertex(b, k);
           table.convex[blocks.start[b] + k] = cross(v - blocks.vertex(b, k - 1), blocks.vertex(b, k + 1) - v) > 0;
         }
@@ -51,6 +56,25 @@ EdgeTable make_edge_table(const BlockPolygons& blocks) {
 bool facing(const Edge& e, const Edge& f, double parallel_sin) {
   // Anti-parallel within the tolerance: e.t·f.t ≈ -1.
   return e.t.dot(f.t) < 0 && std::abs(cross(e.t, f.t)) <= parallel_sin;
+}
+
+// How edge ea of one block lies along a facing edge eb of another: where
+// ea's ends fall along eb (s0 for ea's start, s1 for its end: ea runs the
+// other way), the shared length lo..hi along eb (hi < lo: a gap between their
+// ends), and ea's gap outside eb at lo and at hi.
+struct FacingSpan {
+  double s0, s1, lo, hi, glo, ghi;
+  double overlap() const { return hi - lo; }
+};
+
+FacingSpan facing_span(const Edge& ea, const Edge& eb) {
+  FacingSpan f;
+  f.s0 = (ea.p0 - eb.p0).dot(eb.t), f.s1 = (ea.p1 - eb.p0).dot(eb.t);
+  f.lo = std::max(0.0, f.s1), f.hi = std::min(eb.length, f.s0);
+  const double g0 = (ea.p0 - eb.p0).dot(eb.n), g1 = (ea.p1 - eb.p0).dot(eb.n);
+  auto gap_at = [&](double pos) { return f.s0 == f.s1 ? g0 : g1 + (pos - f.s1) / (f.s0 - f.s1) * (g0 - g1); };
+  f.glo = gap_at(f.lo), f.ghi = gap_at(f.hi);
+  return f;
 }
 
 // How clearly a vertex wedge lies outside an edge: the smaller of its two
@@ -67,6 +91,7 @@ struct PairDetector {
   std::span<const int> edge_joint;
   const NarrowPhaseSettings& s;
   std::vector<Contact>& out;
+  std::vector<AlignedEdges>* aligned;        // where the pair's aligned edges go (none: not wanted)
   std::vector<std::pair<int, int>> covered;  // (block, vertex) already in a facing-edge contact
 
   // Adds the contact unless its vertex has gone round the edge's corner;
@@ -99,19 +124,17 @@ struct PairDetector {
       for (int ib = 0; ib < blocks.size(b); ++ib) {
         const Edge& eb = edge_of(b, ib);
         if (!facing(ea, eb, s.parallel_sin)) continue;
-        // Positions along eb of ea's ends (ea runs the other way).
-        const double s0 = (ea.p0 - eb.p0).dot(eb.t), s1 = (ea.p1 - eb.p0).dot(eb.t);
-        const double lo = std::max(0.0, s1), hi = std::min(eb.length, s0);
+        const FacingSpan span = facing_span(ea, eb);
+        const double s0 = span.s0, s1 = span.s1, lo = span.lo, hi = span.hi, glo = span.glo, ghi = span.ghi;
         const double shorter = std::min(ea.length, eb.length);
-        if (hi - lo <= 1e-6 * shorter) continue;  // no shared length (an aligned corner at most)
-        // Gap (outside of b positive) of ea at the two overlap ends.
-        const double g0 = (ea.p0 - eb.p0).dot(eb.n), g1 = (ea.p1 - eb.p0).dot(eb.n);
-        auto gap_at = [&](double pos) { return s0 == s1 ? g0 : g1 + (pos - s1) / (s0 - s1) * (g0 - g1); };
-        const double glo = gap_at(lo), ghi = gap_at(hi);
         const double max_depth = std::min(s.range, 0.25 * shorter);
+        const double tie = kEndTie * shorter;
+        if (aligned && std::abs(hi - lo) < tie && std::min(glo, ghi) <= kCornerMargin * shorter &&
+            std::min(glo, ghi) >= -max_depth)
+          aligned->push_back({a, ia, b, ib, hi - lo});
+        if (hi - lo <= 1e-6 * shorter) continue;  // no shared length (an aligned corner at most)
         if (std::min(glo, ghi) > s.range || std::min(glo, ghi) < -max_depth) continue;
         const double share = 0.5 * (hi - lo);
-        const double tie = 0.05 * shorter;
         const double scale = std::min(1.0, (hi - lo) / tie);
         const int a_lo = wrap(a, ia + 1), a_hi = ia;  // a's vertices at the low / high end
         const int b_lo = ib, b_hi = wrap(b, ib + 1);  // b's vertices at the low / high end
@@ -245,6 +268,14 @@ bool passed_corner(const BlockPolygons& blocks, const Contact& c) {
   return depth > std::max(0.0, kCornerRatio * other_depth) + margin;
 }
 
+bool aligned_edges_slid(const BlockPolygons& blocks, const AlignedEdges& e) {
+  if (e.a >= blocks.count() || e.b >= blocks.count() || e.edge_a >= blocks.size(e.a) || e.edge_b >= blocks.size(e.b))
+    return true;
+  const Edge ea = make_edge(blocks, e.a, e.edge_a), eb = make_edge(blocks, e.b, e.edge_b);
+  const double tie = kEndTie * std::min(ea.length, eb.length);
+  return facing_span(ea, eb).overlap() > std::max(0.0, e.overlap) + kAlignedSlide * tie;
+}
+
 bool slid_past_end(const BlockPolygons& blocks, const Contact& c) {
   const int b = c.eblock, f = c.edge;
   const Vec2& v = blocks.vertex(c.vblock, c.vertex);
@@ -267,8 +298,9 @@ bool slid_past_end(const BlockPolygons& blocks, const Contact& c) {
 
 namespace {
 void detect_with_table(const BlockPolygons& blocks, const EdgeTable& table, std::span<const int> edge_joint, int a,
-                       int b, const NarrowPhaseSettings& settings, std::vector<Contact>& out) {
-  PairDetector d{blocks, table, edge_joint, settings, out, {}};
+                       int b, const NarrowPhaseSettings& settings, std::vector<Contact>& out,
+                       std::vector<AlignedEdges>* aligned) {
+  PairDetector d{blocks, table, edge_joint, settings, out, aligned, {}};
   const std::size_t first = out.size();
   d.facing_edges(a, b);
   d.vertex_to_edge(a, b);
@@ -290,19 +322,26 @@ void detect_with_table(const BlockPolygons& blocks, const EdgeTable& table, std:
 
 void detect_pair_contacts(const BlockPolygons& blocks, std::span<const int> edge_joint, int a, int b,
                           const NarrowPhaseSettings& settings, std::vector<Contact>& out) {
-  detect_with_table(blocks, make_edge_table(blocks), edge_joint, a, b, settings, out);
+  detect_with_table(blocks, make_edge_table(blocks), edge_joint, a, b, settings, out, nullptr);
 }
 
 std::vector<Contact> detect_contacts(const BlockPolygons& blocks, std::span<const int> edge_joint,
-                                     std::span<const std::pair<int, int>> pairs, const NarrowPhaseSettings& settings) {
+                                     std::span<const std::pair<int, int>> pairs, const NarrowPhaseSettings& settings,
+                                     std::vector<AlignedEdges>* aligned) {
   const EdgeTable table = make_edge_table(blocks);
   const std::size_t chunks = chunk_count(pairs.size());
   std::vector<std::vector<Contact>> found(chunks);
+  std::vector<std::vector<AlignedEdges>> found_aligned(chunks);
   tbb::parallel_for(std::size_t(0), chunks, [&](std::size_t c) {
     const std::size_t end = std::min(pairs.size(), (c + 1) * kChunk);
     for (std::size_t p = c * kChunk; p < end; ++p)
-      detect_with_table(blocks, table, edge_joint, pairs[p].first, pairs[p].second, settings, found[c]);
+      detect_with_table(blocks, table, edge_joint, pairs[p].first, pairs[p].second, settings, found[c],
+                        aligned ? &found_aligned[c] : nullptr);
   });
+  if (aligned) {
+    aligned->clear();
+    for (const auto& f : found_aligned) aligned->insert(aligned->end(), f.begin(), f.end());
+  }
   std::size_t total = 0;
   for (const auto& f : found) total += f.size();
   std::vector<Contact> contacts;

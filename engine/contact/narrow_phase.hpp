@@ -23,6 +23,9 @@
 //     most clearly. Corners of aligned blocks that merely touch (the diagonal
 //     neighbours at a four-block junction of a regular joint grid) make no
 //     contact: the facing edges of the side neighbours carry that junction.
+//     Their facing edges are watched instead (AlignedEdges): when one block
+//     slides along the joint past the other's corner, the list is searched
+//     again, and the facing edges then overlap and make their contacts.
 // Neither kind pairs a vertex with an edge it has gone round the corner of
 // (passed_corner): such a vertex belongs to the next edge at that corner
 // (docs/contacts.md, contact transfer).
@@ -69,9 +72,35 @@ inline constexpr double kCornerRatio = 10;
 bool slid_past_end(const BlockPolygons& blocks, const Contact& c);
 inline constexpr double kEndTie = 0.05;
 
+// Two facing edges that touch (normal gap within kCornerMargin of the
+// shorter edge) with their ends within the facing edges' tie (kEndTie of the
+// shorter edge) of each other along the line: aligned corners, as at a joint
+// junction. They have no facing-edge contacts, or contacts scaled down by
+// their short overlap; both are right only as long as the blocks do not
+// slide along the line. `overlap` is their shared length at the search
+// (negative: the gap between their ends).
+struct AlignedEdges {
+  int a = 0, edge_a = 0, b = 0, edge_b = 0;
+  double overlap = 0;
+  template <class Archive>
+  void fields(Archive& ar) {
+    ar(a, edge_a, b, edge_b, overlap);
+  }
+};
+
+// Whether aligned edges have slid along their line since the search so that
+// their overlap grew by more than kAlignedSlide of their tie: the contacts
+// between them (none, or scaled by the overlap) are then missing or too
+// weak, and the list must be searched again. Also true when the edges no
+// longer exist (the blocks changed).
+bool aligned_edges_slid(const BlockPolygons& blocks, const AlignedEdges& e);
+inline constexpr double kAlignedSlide = 0.1;
+
 // Every pair in parallel; the result is ordered by pair, then identity,
-// whatever the thread count.
+// whatever the thread count. `aligned`, when given, receives the pairs'
+// aligned edges, in the same order.
 std::vector<Contact> detect_contacts(const BlockPolygons& blocks, std::span<const int> edge_joint,
-                                     std::span<const std::pair<int, int>> pairs, const NarrowPhaseSettings& settings);
+                                     std::span<const std::pair<int, int>> pairs, const NarrowPhaseSettings& settings,
+                                     std::vector<AlignedEdges>* aligned = nullptr);
 
 }  // namespace dda

@@ -123,6 +123,13 @@ TEST(Checkpoint, SlidingSlopeContinuesBitForBit) {
   expect_restart_exact(slope, 80, 80);
 }
 
+// The aligned edges the contact search watches (narrow_phase.hpp) are part of
+// what the list's staleness is measured from: a block sliding past an
+// aligned corner, checkpointed between two of the searches they cause.
+TEST(Checkpoint, SlidePastAnAlignedCornerContinuesBitForBit) {
+  expect_restart_exact([] { return test::block_sliding_past_aligned_corner(ContactLaw::Shi); }, 12, 40);
+}
+
 TEST(Checkpoint, SecondOrderIntegratorsContinueBitForBit) {
   // Newmark and generalized-α carry the blocks' accelerations (and the
   // out-of-balance force) from step to step; the energy budget is cumulative.

@@ -34,13 +34,7 @@ const ContactLaw kLaws[] = {ContactLaw::Shi, ContactLaw::Holding};
 const ContactLaw kShiOnly[] = {ContactLaw::Shi};
 const char* name(ContactLaw law) { return law == ContactLaw::Shi ? "shi" : "holding"; }
 
-// A block held at every vertex.
-BlockId add_fixed_block(World& w, const std::vector<Vec2>& outline, int rock) {
-  const BlockId b = w.add_block(outline, rock);
-  const std::vector<Vec2> corners(w.block_vertices(b).begin(), w.block_vertices(b).end());
-  for (const Vec2& v : corners) w.add_fixed_point(b, v);
-  return b;
-}
+using test::add_fixed_block;
 
 // The deepest overlap of any two blocks: the largest distance of a vertex of
 // one inside another (0 when none is inside).
@@ -404,4 +398,39 @@ TEST(ContactTransfer, StallMessageNamesTheContactAndATrueCure) {
   // g0 raised a little beyond what it says, at the small bound from the start.
   World stiff = resting_block(1.05 * factor * 1e7, 1e-5);
   EXPECT_NO_THROW(for (int i = 0; i < 50; ++i) stiff.step()) << message;
+}
+
+// Aligned corners that slide apart (docs/contacts.md): the scene
+// test::block_sliding_past_aligned_corner. Block A on a fixed base, its
+// bottom-right corner at a joint where the top of a free block B begins (its
+// bottom edge and B's top edge meet end to end: no contact between them),
+// slides right at 1 m/s without friction, over B. Its top overhangs to the
+// right, so its weight's line passes the base's corner after 0.22 m: from
+// then on it rests on B. The search range is fixed wide (0.6 m). Reference:
+// A's bottom is carried by B's top as soon as it overlaps it: no vertex sinks
+// into another block by more than the heaviest load one contact spring can
+// carry, A's and B's weight on B's foundation, applied at once,
+// 2·(m_A + m_B)·g/g0 (0.7 µm), and B stays at rest: its speed below 1 cm/s,
+// the bound twice the speed of its own landing from the 1 µm gap it starts
+// above its foundation, sqrt(2·g·1e-6) = 4.4 mm/s (A's weight settles it by
+// a fraction of a micrometre). Without the watch on aligned edges
+// (narrow_phase.hpp) A tipped about the base's corner, its corner sank
+// 0.68 mm into B unresisted until A had turned 0.005 rad, and the search that
+// followed threw B at 0.2 m/s (Shi's law) and 0.39 m/s ("holding").
+TEST(ContactTransfer, BlockSlidingPastAnAlignedCornerIsCarriedWithoutAKick) {
+  for (const ContactLaw law : kLaws) {
+    World w = test::block_sliding_past_aligned_corner(law);
+    const BlockId b = 2, a = 3;
+    const Controls& c = w.controls();
+    const double weight_depth = 2 * (w.block_mass(a) + w.block_mass(b)) * kG / c.g0;
+    double overlap = 0, b_speed = 0;
+    while (w.time() < 0.6) {
+      w.step();
+      overlap = std::max(overlap, deepest_overlap(w));
+      b_speed = std::max(b_speed, speed(w, b));
+    }
+    EXPECT_GT(w.block_centroid(a).x(), 0.2) << name(law) << ": A's weight did not pass onto B";
+    EXPECT_LT(overlap, weight_depth) << name(law);
+    EXPECT_LT(b_speed, 1e-2) << name(law);
+  }
 }
