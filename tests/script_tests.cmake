@@ -134,6 +134,15 @@ dda_run_test(paper.bar_time_step long 7200 paper/bar_time_step.lua --set check=t
 # the default set, 0.2, 0.1 and 0.05 m as a long run.
 dda_run_test(paper.bar_block_size paper 600 paper/bar_block_size.lua --set sizes=0.2,0.1 --set check=true)
 dda_run_test(paper.bar_block_size_full long 3600 paper/bar_block_size.lua --set check=true)
+# Issue 21 item 5: the precursor (a tensile lobe ahead of the compressive pulse at
+# the centre, the exact jointed bar has none) with the 0.2 m blocks meshed, at
+# g0 = 20E, where no first-order block size takes it under 2 % (16 % with 0.2 m
+# blocks): meshed at 0.05 m it lies under the issue's 2 % of the amplitude
+# (measured 1.3 %; long), and meshed at 0.2 m under 5 % (measured 4.2 %; default set).
+dda_run_test(paper.meshed_precursor paper 600 paper/bar_block_size.lua --set sizes=0.2 --set mesh=0.2 --set g0=20
+             --set max_precursor=5)
+dda_run_test(paper.meshed_precursor_full long 3600 paper/bar_block_size.lua --set sizes=0.2 --set mesh=0.05
+             --set g0=20 --set max_precursor=2)
 # Issue 27: the paper's Model 1 with its blocks meshed (docs/meshed_blocks.md),
 # nu = 0 (the 2-D bar is then the 1-D one), against the exact jointed bar: the
 # first compressive peak at the centre within 3 % at 0.05 m (long); a smoke run
