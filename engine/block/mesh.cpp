@@ -24,23 +24,7 @@ class MeshBuilder {
     mesh_.triangles.push_back({node(a), node(b), node(c)});
   }
   TriangleMesh take(std::span<const Vec2> outline) {
-    // Each triangle edge lies on the outline edge that holds both its ends.
-    const int n = static_cast<int>(outline.size());
-    auto on_edge = [&](const Vec2& p, int k) {
-      const Vec2 a = outline[k], b = outline[(k + 1) % n];
-      const Vec2 d = b - a;
-      const double t = std::clamp((p - a).dot(d) / d.squaredNorm(), 0.0, 1.0);
-      return (a + t * d - p).norm() <= tol_;
-    };
-    mesh_.outline_edge.resize(mesh_.triangles.size());
-    for (std::size_t t = 0; t < mesh_.triangles.size(); ++t)
-      for (int k = 0; k < 3; ++k) {
-        const Vec2 &p = mesh_.nodes[mesh_.triangles[t][k]], &q = mesh_.nodes[mesh_.triangles[t][(k + 1) % 3]];
-        int edge = -1;
-        for (int e = 0; e < n && edge < 0; ++e)
-          if (on_edge(p, e) && on_edge(q, e)) edge = e;
-        mesh_.outline_edge[t][k] = edge;
-      }
+    label_outline_edges(mesh_, outline, tol_);
     return std::move(mesh_);
   }
 
@@ -75,27 +59,55 @@ void divide_triangle(MeshBuilder& mesh, const Vec2& a, const Vec2& b, const Vec2
 
 int divisions(double length, double size) { return std::max(1, static_cast<int>(std::ceil(length / size - 1e-9))); }
 
+// The first vertex (0-based) at which the counter-clockwise outline turns
+// clockwise, beyond round-off; -1 when it is convex.
+int first_reflex_vertex(std::span<const Vec2> v) {
+  const int n = static_cast<int>(v.size());
+  for (int k = 0; k < n; ++k) {
+    const Vec2 &p = v[(k + n - 1) % n], &q = v[k], &r = v[(k + 1) % n];
+    if (cross(q - p, r - q) < -1e-12 * (q - p).norm() * (r - q).norm()) return k;
+  }
+  return -1;
+}
+
 }  // namespace
+
+void label_outline_edges(TriangleMesh& mesh, std::span<const Vec2> outline, double tol) {
+  const int n = static_cast<int>(outline.size());
+  auto on_edge = [&](const Vec2& p, int k) {
+    const Vec2 a = outline[k], b = outline[(k + 1) % n];
+    const Vec2 d = b - a;
+    const double t = std::clamp((p - a).dot(d) / d.squaredNorm(), 0.0, 1.0);
+    return (a + t * d - p).norm() <= tol;
+  };
+  mesh.outline_edge.resize(mesh.triangles.size());
+  for (std::size_t t = 0; t < mesh.triangles.size(); ++t)
+    for (int k = 0; k < 3; ++k) {
+      const Vec2 &p = mesh.nodes[mesh.triangles[t][k]], &q = mesh.nodes[mesh.triangles[t][(k + 1) % 3]];
+      int edge = -1;
+      for (int e = 0; e < n && edge < 0; ++e)
+        if (on_edge(p, e) && on_edge(q, e)) edge = e;
+      mesh.outline_edge[t][k] = edge;
+    }
+}
+
+TriangleMesh mesh_polygon(std::span<const Vec2> outline, double size, const std::string& what) {
+  if (first_reflex_vertex(outline) < 0) return mesh_convex_polygon(outline, size, what);
+  return mesh_concave_polygon(outline, size, what);
+}
 
 TriangleMesh mesh_convex_polygon(std::span<const Vec2> v, double size, const std::string& what) {
   if (!(size > 0) || !std::isfinite(size)) throw Error(msg(what, ": mesh size ", size, " must be positive"));
   const int n = static_cast<int>(v.size());
+  if (const int k = first_reflex_vertex(v); k >= 0)
+    throw Error(
+        msg(what, " is not convex (at its vertex ", k + 1, "); the structured mesher takes convex blocks only"));
   double longest = 0;
-  for (int k = 0; k < n; ++k) {
-    const Vec2 &p = v[(k + n - 1) % n], &q = v[k], &r = v[(k + 1) % n];
-    longest = std::max(longest, (r - q).norm());
-    if (cross(q - p, r - q) < -1e-12 * (q - p).norm() * (r - q).norm())
-      throw Error(msg(what, " is not convex (at its vertex ", k + 1,
-                      "); meshing handles convex blocks only: give this block's material no mesh size, or cut it "
-                      "into convex blocks with a joint line"));
-  }
-  // Bad input must not exhaust memory before the first step's memory check:
-  // a block of more than kMaxElements elements is refused here.
-  constexpr double kMaxElements = 4e6;
+  for (int k = 0; k < n; ++k) longest = std::max(longest, (v[(k + 1) % n] - v[k]).norm());
   const double across = longest / size;
-  if (across * across * std::max(4, n) > kMaxElements)
+  if (across * across * std::max(4, n) > kMaxMeshElements)
     throw Error(msg(what, ": mesh size ", size, " m would cut this block (edges up to ", longest, " m) into more than ",
-                    kMaxElements, " elements; use a larger mesh size"));
+                    kMaxMeshElements, " elements; use a larger mesh size"));
   MeshBuilder mesh(1e-9 * longest);
   if (n == 3) {
     divide_triangle(mesh, v[0], v[1], v[2], divisions(longest, size));

@@ -19,11 +19,13 @@
 // each other, an edge inside a mesh carries no contact, and a vertex makes
 // contacts only from an element with an outline edge at it (mesh_contacts.cpp).
 //
-// The mesher (mesh_convex_polygon) is structured and handles convex blocks:
-// a triangle is divided into m² similar triangles, a quadrilateral into a
-// bilinear grid of cells split along alternating diagonals, a convex polygon
-// of five or more corners into a fan from its centroid whose triangles are
-// divided alike (docs/meshed_blocks.md says why not CGAL yet).
+// The mesher (mesh_polygon) takes convex blocks to the structured mesher
+// (mesh_convex_polygon): a triangle is divided into m² similar triangles, a
+// quadrilateral into a bilinear grid of cells of four triangles about their
+// centres, a convex polygon of five or more corners into a fan from its
+// centroid whose triangles are divided alike. Concave blocks go to CGAL's
+// constrained Delaunay mesher (mesh_concave_polygon, block/mesh_cgal.cpp, the
+// one file that includes CGAL; docs/meshed_blocks.md says why).
 #include <array>
 #include <span>
 #include <string>
@@ -42,10 +44,39 @@ struct TriangleMesh {
   std::vector<std::array<int, 3>> outline_edge;
 };
 
-// Meshes a convex polygon (counter-clockwise) with triangles of edges no
-// longer than about `size`. Throws dda::Error naming `what` when the polygon
-// is not convex or the size is not positive.
+// Meshes a simple polygon (counter-clockwise) with triangles of edges no
+// longer than about `size`: convex outlines with mesh_convex_polygon, others
+// with mesh_concave_polygon. Throws dda::Error naming `what` when the size is
+// not positive or the mesh would be too large.
+TriangleMesh mesh_polygon(std::span<const Vec2> outline, double size, const std::string& what);
+
+// The structured mesher for a convex polygon. Throws dda::Error naming `what`
+// when the polygon is not convex.
 TriangleMesh mesh_convex_polygon(std::span<const Vec2> outline, double size, const std::string& what);
+
+// CGAL's constrained Delaunay mesher (Ruppert's refinement, exact
+// predicates) for a simple polygon of any shape: every outline vertex is a
+// node, every outline edge is first cut into equal segments no longer than
+// `size`, and the refinement leaves no triangle edge longer than `size` and
+// no angle under kConcaveMeshMinimumAngle (except at outline corners sharper
+// than that). The result depends on the outline only: the same triangles,
+// numbered the same, on every run. Throws dda::Error naming `what` when the
+// outline cannot be meshed (its edges cross) or the mesh would be too large.
+TriangleMesh mesh_concave_polygon(std::span<const Vec2> outline, double size, const std::string& what);
+
+// The refinement's bound on the squared sine of an element's smallest angle
+// (CGAL's default, the largest for which Ruppert's refinement is proven to
+// end): asin(sqrt(0.125)) = 20.7°.
+inline constexpr double kConcaveMeshShapeBound = 0.125;
+
+// A block is refused before it is meshed (or, for CGAL, while it is refined)
+// when its mesh would hold more elements than this: bad input must not
+// exhaust memory before the first step's memory check.
+inline constexpr double kMaxMeshElements = 4e6;
+
+// Sets mesh.outline_edge from the geometry: a triangle edge lies on the
+// outline edge that holds both its ends (within `tol`).
+void label_outline_edges(TriangleMesh& mesh, std::span<const Vec2> outline, double tol);
 
 // The element of block b's mesh whose outline holds p (b itself when it is
 // not meshed, or when no element holds p: then the nearest element of its

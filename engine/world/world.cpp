@@ -92,7 +92,7 @@ BlockId World::add_block(std::vector<Vec2> vertices, int rock_material, std::vec
 BlockId World::add_meshed_block(const std::vector<Vec2>& outline, int rock_material,
                                 const std::vector<int>& edge_joints, const std::vector<EdgeTag>& edge_tags,
                                 double mesh_size, const std::string& what) {
-  const TriangleMesh mesh = mesh_convex_polygon(outline, mesh_size, what);
+  const TriangleMesh mesh = mesh_polygon(outline, mesh_size, what);
   Blocks& bl = s_.blocks;
   const int first_node = mesh_node_count(bl);
   int mesh_id = 0;

@@ -19,9 +19,8 @@ namespace {
 
 // Every triangle counter-clockwise; the areas add up to the polygon's; an
 // edge inside appears twice, in opposite directions, and an outline edge
-// once (conforming, no hanging node).
-void expect_conforming_cover(const std::vector<Vec2>& outline, double size) {
-  const TriangleMesh mesh = mesh_convex_polygon(outline, size, "test block");
+// once (conforming, no hanging node); no edge longer than `longest`.
+void expect_conforming_cover(const TriangleMesh& mesh, const std::vector<Vec2>& outline, double longest) {
   double area = 0;
   std::map<std::pair<int, int>, int> edges;
   for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
@@ -32,7 +31,7 @@ void expect_conforming_cover(const std::vector<Vec2>& outline, double size) {
     for (int k = 0; k < 3; ++k) {
       ++edges[{tri[k], tri[(k + 1) % 3]}];
       const double length = (mesh.nodes[tri[(k + 1) % 3]] - mesh.nodes[tri[k]]).norm();
-      EXPECT_LE(length, 1.5 * size);
+      EXPECT_LE(length, longest);
     }
   }
   EXPECT_NEAR(area, signed_area(outline), 1e-12 * signed_area(outline));
@@ -43,6 +42,10 @@ void expect_conforming_cover(const std::vector<Vec2>& outline, double size) {
       EXPECT_EQ(edges[std::make_pair(a, b)], 1);
       EXPECT_EQ(twin, mesh.outline_edge[t][k] < 0) << "edge " << a << "-" << b;
     }
+}
+
+void expect_conforming_cover(const std::vector<Vec2>& outline, double size) {
+  expect_conforming_cover(mesh_convex_polygon(outline, size, "test block"), outline, 1.5 * size);
 }
 
 TEST(MeshedBlocks, MesherCoversConvexPolygonsConformingly) {
@@ -56,26 +59,78 @@ TEST(MeshedBlocks, MesherCoversConvexPolygonsConformingly) {
 }
 
 TEST(MeshedBlocks, AMeshTooFineIsRefusedBeforeItIsMade) {
-  try {
-    mesh_convex_polygon(test::rectangle(0, 0, 100, 100), 1e-3, "block 7");
-    FAIL() << "10^10 elements were asked for";
-  } catch (const Error& e) {
-    EXPECT_NE(std::string(e.what()).find("use a larger mesh size"), std::string::npos) << e.what();
+  for (const auto& outline :
+       {test::rectangle(0, 0, 100, 100), std::vector<Vec2>{{0, 0}, {100, 0}, {100, 100}, {50, 1}, {0, 100}}})
+    try {
+      mesh_polygon(outline, 1e-3, "block 7");
+      FAIL() << "10^10 elements were asked for";
+    } catch (const Error& e) {
+      EXPECT_NE(std::string(e.what()).find("use a larger mesh size"), std::string::npos) << e.what();
+    }
+}
+
+// Concave outlines (block/mesh_cgal.cpp, CGAL's Delaunay refinement).
+const std::vector<Vec2> kLShape{{0, 0}, {2, 0}, {2, 1}, {1, 1}, {1, 2}, {0, 2}};
+// The rock around half a tunnel: a 4 × 3 m block with a half-octagon notch
+// of radius 1 m cut from the middle of its base (as a joint cut through a
+// hole leaves it).
+std::vector<Vec2> notched_block() {
+  std::vector<Vec2> v{{-2, 0}, {-1, 0}};
+  for (int k = 7; k >= 1; --k) v.push_back({std::cos(M_PI * k / 8), std::sin(M_PI * k / 8)});
+  for (Vec2 p : {Vec2(1, 0), Vec2(2, 0), Vec2(2, 3), Vec2(-2, 3)}) v.push_back(p);
+  return v;
+}
+
+// Reference: the mesher's contract (mesh.hpp). Conforming cover of the
+// outline; every edge within the mesh size; every angle at least
+// asin(sqrt(kConcaveMeshShapeBound)) = 20.7° (the outlines have no corner
+// sharper than that; 1e-9 rad for the round-off of the angles' computation);
+// every outline vertex a node, and the outline cut at the mesh size.
+TEST(MeshedBlocks, ConcaveMesherHonoursItsSizeAndAngleBounds) {
+  const double min_angle = std::asin(std::sqrt(kConcaveMeshShapeBound));
+  for (const auto& [outline, size] : {std::pair{kLShape, 0.25}, {notched_block(), 0.3}, {kLShape, 0.07}}) {
+    const TriangleMesh mesh = mesh_polygon(outline, size, "concave block");
+    expect_conforming_cover(mesh, outline, size * (1 + 1e-12));
+    double smallest = M_PI;
+    for (const auto& tri : mesh.triangles)
+      for (int k = 0; k < 3; ++k) {
+        const Vec2 a = mesh.nodes[tri[(k + 1) % 3]] - mesh.nodes[tri[k]];
+        const Vec2 b = mesh.nodes[tri[(k + 2) % 3]] - mesh.nodes[tri[k]];
+        smallest = std::min(smallest, std::atan2(cross(a, b), a.dot(b)));
+      }
+    EXPECT_GE(smallest, min_angle - 1e-9) << "size " << size;
+    for (const Vec2& corner : outline)
+      EXPECT_TRUE(std::any_of(mesh.nodes.begin(), mesh.nodes.end(), [&](const Vec2& p) { return p == corner; }));
+    std::printf("concave mesh at %.2f m: %zu elements, %zu nodes, smallest angle %.2f deg\n", size,
+                mesh.triangles.size(), mesh.nodes.size(), smallest * 180 / M_PI);
   }
 }
 
-TEST(MeshedBlocks, ConcaveBlockIsRefusedWithTheCure) {
-  World w;
+// Same outline, same mesh to the bit: CGAL's refinement is sequential and
+// its point location walks with a fixed seed; the nodes and triangles are
+// then numbered from the geometry alone.
+TEST(MeshedBlocks, ConcaveMeshIsTheSameEveryTime) {
+  const TriangleMesh a = mesh_polygon(notched_block(), 0.2, "a"), b = mesh_polygon(notched_block(), 0.2, "b");
+  ASSERT_EQ(a.nodes.size(), b.nodes.size());
+  for (std::size_t i = 0; i < a.nodes.size(); ++i) EXPECT_TRUE(a.nodes[i] == b.nodes[i]) << i;
+  EXPECT_EQ(a.triangles, b.triangles);
+  EXPECT_EQ(a.outline_edge, b.outline_edge);
+}
+
+TEST(MeshedBlocks, AnOutlineThatCrossesItselfIsRefusedWithTheCause) {
+  const std::vector<Vec2> bow_tie{{0, 0}, {1, 1}, {1, 0}, {0, 1}};
+  try {
+    mesh_concave_polygon(bow_tie, 0.1, "block 3");
+    FAIL() << "a bow tie was meshed";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("block 3: its outline crosses or touches itself"), std::string::npos)
+        << e.what();
+  }
+  World w;  // through the model, the polygon check speaks first
   RockMaterial rock = test::granite();
   rock.mesh_size = 0.1;
   const int r = w.add_rock_material(rock);
-  try {
-    w.add_block({{0, 0}, {2, 0}, {2, 2}, {1, 0.5}, {0, 2}}, r);
-    FAIL() << "a concave block was meshed";
-  } catch (const Error& e) {
-    EXPECT_NE(std::string(e.what()).find("not convex"), std::string::npos) << e.what();
-    EXPECT_NE(std::string(e.what()).find("no mesh size"), std::string::npos) << e.what();
-  }
+  EXPECT_THROW(w.add_block(bow_tie, r), Error);
 }
 
 // Free fall is exact under Shi's scheme (constant acceleration): every node
