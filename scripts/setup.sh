@@ -15,6 +15,9 @@ packages=(g++ cmake make pkg-config libeigen3-dev libtbb-dev liblua5.4-dev
           # The sparse direct solver: CHOLMOD (SuiteSparse, with METIS) and an
           # optimised BLAS for its dense kernels.
           libsuitesparse-dev libopenblas-dev
+          # The mesher of concave meshed blocks: CGAL (header-only; brings the
+          # Boost, GMP and MPFR headers and libraries it uses).
+          libcgal-dev
           # Run: the TrueType font frames and plots are labelled with (σ, τ);
           # without it a bitmap font spells Greek letters with Latin ones.
           fonts-dejavu-core

@@ -114,7 +114,8 @@ const ControlSpec kControls[] = {
         "mesh_size", [](Controls& c) -> double& { return c.mesh_size; }, kZeroOffOrPositive,
         "m: blocks added from now on whose rock material has no `mesh_size` of its own are meshed into "
         "constant-strain triangles of about this size, with continuous displacement inside and contacts"
-        " on the outline (`docs/meshed_blocks.md`); convex blocks only. 0: first-order blocks",
+        " on the outline (`docs/meshed_blocks.md`); convex blocks on a structured grid, concave ones by CGAL. 0: "
+        "first-order blocks",
         "0 (off)"),
     number(
         "fixed_point_factor", [](Controls& c) -> double& { return c.fixed_point_factor; }, kPositive,
