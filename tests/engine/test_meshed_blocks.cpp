@@ -11,7 +11,9 @@
 #include "../scenes.hpp"
 #include "block/mesh.hpp"
 #include "core/error.hpp"
+#include "geometry/cutting.hpp"
 #include "geometry/polygon.hpp"
+#include "world/cut_blocks.hpp"
 
 using namespace dda;
 
@@ -131,6 +133,38 @@ TEST(MeshedBlocks, AnOutlineThatCrossesItselfIsRefusedWithTheCause) {
   rock.mesh_size = 0.1;
   const int r = w.add_rock_material(rock);
   EXPECT_THROW(w.add_block(bow_tie, r), Error);
+}
+
+// A block cannot have a hole (one outline per block): the cutter cuts the
+// rock around an excavation free with two joints (inner_cut_material), and
+// the two concave blocks are meshed by CGAL. Reference: the elements tile
+// the domain minus the hole (area to 1e-12), and the element edges tagged
+// with the hole run its whole perimeter (to 1e-12): the excavation's
+// boundary is the meshes' outline, where its loads and contacts act.
+TEST(MeshedBlocks, RockAroundAnExcavationIsMeshedAsConcaveBlocks) {
+  geometry::CutInput in;
+  in.domain = test::rectangle(0, 0, 6, 4);
+  std::vector<Vec2> hole;
+  for (int k = 0; k < 8; ++k) hole.push_back(Vec2(3, 2) + Vec2(std::cos(M_PI * k / 4), std::sin(M_PI * k / 4)));
+  in.holes = {hole};
+  in.inner_cut_material = 0;
+  const geometry::BlockSet set = geometry::cut_blocks(in);
+  ASSERT_EQ(set.blocks.size(), 2u);
+  Controls c;
+  c.mesh_size = 0.3;
+  World w(c);
+  w.add_rock_material(test::granite());
+  const std::vector<BlockId> elements = add_cut_blocks(w, set, {});
+  double area = 0, hole_edges = 0;
+  for (const BlockId e : elements) {
+    area += w.block_area(e);
+    const auto v = w.block_vertices(e);
+    for (int k = 0; k < 3; ++k)
+      if (w.block_edge_tag(e, k).kind == EdgeKind::Hole) hole_edges += (v[(k + 1) % 3] - v[k]).norm();
+  }
+  EXPECT_NEAR(area, 24 - signed_area(hole), 1e-12 * 24);
+  EXPECT_NEAR(hole_edges, 8 * (hole[1] - hole[0]).norm(), 1e-12 * 8);
+  std::printf("rock around the excavation: %zu elements\n", elements.size());
 }
 
 // The patch test (Irons): an L-shaped meshed block loaded on its outline by
