@@ -324,6 +324,45 @@ TEST(MeshedBlocks, MeshedBlockRestsOnItsOutlineContacts) {
   }
 }
 
+// A first-order block nestled in the inner corner of a meshed L (static,
+// gg = 0), the L on a fixed base: the square rests on the L's step and
+// against its wall, its corner at the reflex corner of the L's outline.
+// Reference: the base carries the weight of both (the square's through the
+// L's mesh), m·g within 1e-6; the square touches step and wall, and settles
+// by the contacts' penetration only (under 1e-5 m).
+TEST(MeshedBlocks, BlockInTheInnerCornerOfAMeshedLRestsOnIt) {
+  Controls c;
+  c.gravity = {0, -9.81};
+  c.gg = 0;
+  c.g1 = 1e-3;
+  World w(c);
+  const int rock = w.add_rock_material(test::granite());
+  RockMaterial meshed = test::granite();
+  meshed.mesh_size = 0.25;
+  const int r = w.add_rock_material(meshed);
+  const BlockId base = test::add_fixed_base(w, test::rectangle(-1, -1, 3, 1), rock);
+  const BlockId first = w.add_block(kSmallL, r);
+  const BlockId square = w.add_block(test::rectangle(0.5, 0.5, 0.3, 0.3), rock);
+  const Vec2 start = w.block_centroid(square);
+  for (int i = 0; i < 40; ++i) w.step();
+  double weight = 0;
+  for (std::size_t b = first; b < w.block_count(); ++b) weight += w.block_mass(static_cast<BlockId>(b)) * 9.81;
+  double on_base = 0;
+  bool on_step = false, on_wall = false;
+  for (const Contact& k : w.contacts()) {
+    if (k.vblock == base || k.eblock == base) on_base += k.normal_force;
+    if ((k.vblock == square || k.eblock == square) && k.normal_force > 0) {
+      const auto edge = w.block_vertices(k.eblock);
+      const Vec2 d = edge[(k.edge + 1) % edge.size()] - edge[k.edge];
+      (std::abs(d.y()) < 1e-3 * d.norm() ? on_step : on_wall) = true;
+    }
+  }
+  EXPECT_NEAR(on_base, weight, 1e-6 * weight);
+  EXPECT_TRUE(on_step);
+  EXPECT_TRUE(on_wall);
+  EXPECT_LT((w.block_centroid(square) - start).norm(), 1e-5);
+}
+
 // A concave meshed block dropped onto a fixed base (dynamic, contacts
 // opening and closing): the same state to the bit with 1 and 2 threads.
 TEST(MeshedBlocks, ConcaveMeshedBlockIsDeterministicAcrossThreadCounts) {
