@@ -153,14 +153,23 @@ TEST(MeshedBlocks, AnOutlineThatCrossesItselfIsRefusedWithTheCause) {
 // the domain minus the hole (area to 1e-12), and the element edges tagged
 // with the hole run its whole perimeter (to 1e-12): the excavation's
 // boundary is the meshes' outline, where its loads and contacts act.
-TEST(MeshedBlocks, RockAroundAnExcavationIsMeshedAsConcaveBlocks) {
-  geometry::CutInput in;
-  in.domain = test::rectangle(0, 0, 6, 4);
+// A 6 × 4 m domain with an octagonal hole of radius 1 m at its centre, cut
+// free by inner_cut_material into two concave blocks.
+std::vector<Vec2> excavation_hole() {
   std::vector<Vec2> hole;
   for (int k = 0; k < 8; ++k) hole.push_back(Vec2(3, 2) + Vec2(std::cos(M_PI * k / 4), std::sin(M_PI * k / 4)));
-  in.holes = {hole};
+  return hole;
+}
+geometry::BlockSet excavation_blocks() {
+  geometry::CutInput in;
+  in.domain = test::rectangle(0, 0, 6, 4);
+  in.holes = {excavation_hole()};
   in.inner_cut_material = 0;
-  const geometry::BlockSet set = geometry::cut_blocks(in);
+  return geometry::cut_blocks(in);
+}
+
+TEST(MeshedBlocks, RockAroundAnExcavationIsMeshedAsConcaveBlocks) {
+  const geometry::BlockSet set = excavation_blocks();
   ASSERT_EQ(set.blocks.size(), 2u);
   Controls c;
   c.mesh_size = 0.3;
@@ -174,9 +183,38 @@ TEST(MeshedBlocks, RockAroundAnExcavationIsMeshedAsConcaveBlocks) {
     for (int k = 0; k < 3; ++k)
       if (w.block_edge_tag(e, k).kind == EdgeKind::Hole) hole_edges += (v[(k + 1) % 3] - v[k]).norm();
   }
+  const std::vector<Vec2> hole = excavation_hole();
   EXPECT_NEAR(area, 24 - signed_area(hole), 1e-12 * 24);
   EXPECT_NEAR(hole_edges, 8 * (hole[1] - hole[0]).norm(), 1e-12 * 8);
   std::printf("rock around the excavation: %zu elements\n", elements.size());
+}
+
+// The two meshed halves of the excavated rock on a fixed base under gravity
+// (static, gg = 0; Δt = 1e-2 s, at which 30 steps settle the loads to 1e-9):
+// the upper half rests on the lower one along the two cut joints, outline
+// to outline of two CGAL meshes, and the lower one on the base. Reference:
+// the base carries the weight of both and the cut joints the upper half's,
+// m·g within 1e-6 each.
+TEST(MeshedBlocks, TwoConcaveMeshesRestOnEachOtherAndOnTheBase) {
+  Controls c;
+  c.gravity = {0, -9.81};
+  c.gg = 0;
+  c.g1 = 1e-2;
+  World w(c);
+  RockMaterial meshed = test::granite();
+  meshed.mesh_size = 0.5;
+  w.add_rock_material(meshed);  // material 0: the cut blocks'
+  const BlockId base = test::add_fixed_base(w, test::rectangle(-1, -1, 8, 1), w.add_rock_material(test::granite()));
+  const std::vector<BlockId> elements = add_cut_blocks(w, excavation_blocks(), {});
+  for (int i = 0; i < 30; ++i) w.step();
+  double weight = 0, upper = 0, on_base = 0, between = 0;
+  for (const BlockId e : elements) {
+    weight += w.block_mass(e) * 9.81;
+    if (w.block_centroid(e).y() > 2) upper += w.block_mass(e) * 9.81;
+  }
+  for (const Contact& k : w.contacts()) (k.vblock == base || k.eblock == base ? on_base : between) += k.normal_force;
+  EXPECT_NEAR(on_base, weight, 1e-6 * weight);
+  EXPECT_NEAR(between, upper, 1e-6 * upper);
 }
 
 // The patch test (Irons): an L-shaped meshed block loaded on its outline by
