@@ -346,8 +346,13 @@ void expect_damped_slides_at_the_closed_form_rate(double dt, double t_end) {
     }
 }
 
+// Δt = 1e-3 and 1e-4 s too, where Newmark's integrator chattered undamped
+// (30° on 20° from a static start: −17 % at 1e-3 s, +1.4 % at 1e-4 s);
+// measured with damping below 5e-6. (At 1e-2 s under Newmark's, gravity on
+// at once rings the contact springs, which the strain damping does not
+// reach: docs/contacts.md, Known limits.)
 TEST(Friction, StrainDampingSlidesAtTheClosedFormRateAtSmallSteps) {
-  expect_damped_slides_at_the_closed_form_rate(1e-5, 0.3);
+  for (const double dt : {1e-3, 1e-4, 1e-5}) expect_damped_slides_at_the_closed_form_rate(dt, 0.3);
 }
 
 // The same at Δt = 1e-6 s over 0.1 s (600,000 steps: label `long`).
@@ -358,10 +363,10 @@ TEST(FrictionLong, StrainDampingSlidesAtTheClosedFormRateAtOneMicrosecond) {
 // The stack at small steps (issue 22, item 2), with the strain damping of the
 // tests above: settled first (static analysis, gg = 0, both joints at 20°),
 // then dynamic with the upper joint at 10°. References: the lower block does
-// not slip, bound 1e-10 m between T/3 and T (T = 0.1 s; measured 1.5e-13 m at
-// Δt = 1e-5 s, 9.7e-12 m at 1e-6 s, where the upper block's start still rings
-// at T/3: over T = 0.03 s, 6.7e-10 m at either Δt); the upper block slides at
-// g(sin 15° − cos 15° tan 10°), 0.1 %. Undamped, the lower block slips
+// not slip, bound 1e-10 m between T/3 and T (T = 0.1 s; measured up to 1.0e-11
+// m at either Δt: the upper block's start still rings at T/3, over T = 0.03 s
+// 6.7e-10 m); the upper block slides at g(sin 15° − cos 15° tan 10°), 0.1 %
+// (measured 2e-4). Undamped, the lower block slips
 // 2.0e-7 m (Shi) and 5.2e-5 m (Newmark) at Δt = 1e-5 s, 4.1e-6 and 9.9e-6 m
 // at 1e-6 s (over 0.03 s).
 void expect_damped_stack_holds(double dt) {
