@@ -18,10 +18,19 @@ void add_stress_and_body_force(const Blocks& blocks, std::size_t b, const Vec2& 
   f[1] += blocks.mass[b] * gravity.y();
 }
 
+// Kelvin–Voigt damping of the strain terms, σ = E(ε + β·ε̇), c = β·A·E: its
+// force −c·ε̇₁ at the end-of-step strain rate ε̇₁ = velocity_factor·d −
+// carried_velocity (the time scheme's), as a VBC dashpot's.
+void add_strain_damping(const Blocks& blocks, std::size_t b, const Mat3& c, const TimeScheme& scheme, Mat6& k,
+                        Vec6& f) {
+  k.bottomRightCorner<3, 3>() += scheme.velocity_factor() * c;
+  f.tail<3>() += c * scheme.carried_velocity(blocks.scheme_state(b)).tail<3>();
+}
+
 }  // namespace
 
 void assemble_block_terms(const Blocks& blocks, std::span<const Mat3> elastic, const Vec2& gravity,
-                          const TimeScheme& scheme, BlockTerms& terms) {
+                          double strain_damping, const TimeScheme& scheme, BlockTerms& terms) {
   const std::size_t n = blocks.count();
   terms.k.resize(n);
   terms.f.resize(n);
@@ -31,6 +40,8 @@ void assemble_block_terms(const Blocks& blocks, std::span<const Mat3> elastic, c
     const double area = blocks.area[b];
     // Elasticity acts on the strain terms (εx, εy, γxy).
     k.bottomRightCorner<3, 3>() += area * elastic[blocks.material[b]];
+    if (strain_damping > 0)
+      add_strain_damping(blocks, b, strain_damping * area * elastic[blocks.material[b]], scheme, k, f);
     // Inertia: the time scheme's terms with ∫TᵀT dA.
     scheme.add_inertia(blocks.mass[b] / area, block_tt(blocks, b), blocks.scheme_state(b), k, f);
     add_stress_and_body_force(blocks, b, gravity, f);

@@ -20,8 +20,11 @@ struct BlockTerms {
 
 // Elasticity (elastic[material], plane stress or strain) and initial stress
 // on the strains, inertia (the time scheme), gravity; sizes `terms`.
+// strain_damping β (s, 0: none): the strains' Kelvin–Voigt damping,
+// σ = E(ε + β·ε̇), a damping ratio βω/2 at angular frequency ω
+// (docs/contacts.md: it keeps a sliding block from chattering).
 void assemble_block_terms(const Blocks& blocks, std::span<const Mat3> elastic, const Vec2& gravity,
-                          const TimeScheme& scheme, BlockTerms& terms);
+                          double strain_damping, const TimeScheme& scheme, BlockTerms& terms);
 
 // ∫TᵀT dA of block b (its consistent mass over the density).
 Mat6 block_tt(const Blocks& blocks, std::size_t b);

@@ -98,11 +98,22 @@ const ControlSpec kControls[] = {
         "that locks again keeps the force its spring carried), friction agrees with the normal force of "
         "the accepted solve, friction decisions have a band of their own in the contact's motion, and joints "
         "without cohesion or tension are unbonded from the start: a block that must hold on a slope holds at "
-        "every Δt; not yet the default: at Δt ≤ 1e-5 s a sliding block chatters (under `\"shi\"` too), "
+        "every Δt; not yet the default: at Δt ≤ 1e-5 s a sliding block chatters (under `\"shi\"` too; "
+        "`strain_damping` cures it), "
         "and a block landing at Δt = 1e-2 s starts sliding late. `\"shi\"` (default): Shi's law as the engine has "
         "always had it: "
         "a contact that closes or locks again does so unloaded, and a block that must stay on a slope creeps "
         "down it at small Δt; the paper's scripts pin it to reproduce the paper's figures (docs/contacts.md)"),
+    number(
+        "strain_damping", [](Controls& c) -> double& { return c.strain_damping; }, kZeroOffOrPositive,
+        "s: Kelvin–Voigt damping of the blocks' strains, σ = E(ε + β·ε̇) with β this value: a damping ratio "
+        "βω/2 at angular frequency ω, a material damping of the rock. Friction couples a sliding block's "
+        "strain modes into a vibration that grows where Shi's scheme no longer damps it (Δt ≤ 1e-5 s; under "
+        "`\"newmark\"` at every Δt): the block chatters. 5e-5 (12 % at the 750 Hz of a 1 m granite block) "
+        "keeps such a block sliding at the closed-form rate on φ up to 25°; a larger φ or a larger block "
+        "(lower ω) needs more. A wave of those frequencies is damped as much: the paper's bar loses 5 % of its "
+        "peak at 1e-6 (`docs/contacts.md`)",
+        "0 (off)"),
     number(
         "contact_range", [](Controls& c) -> double& { return c.contact_range; }, kZeroOrPositive,
         "m: blocks closer than this at the start of a step are in contact; a step in which a vertex moves"

@@ -55,6 +55,11 @@ struct Controls {
   // a slope creeps at small Δt); Holding, in which friction holds, opt-in
   // (docs/contacts.md: what is left before it can be the default).
   ContactLaw contact_law = ContactLaw::Shi;
+  // Kelvin–Voigt damping of the blocks' strains, σ = E(ε + β·ε̇): β in
+  // seconds, a damping ratio βω/2 at angular frequency ω; 0: none (the
+  // default). It keeps a block sliding at small Δt from chattering
+  // (docs/contacts.md).
+  double strain_damping = 0;
   double contact_range = 0;  // m; 0 → automatic (contact/contact_detection.hpp)
   // Element size (m) of the meshes of blocks added from now on whose rock
   // material gives none; 0: first-order blocks (block/mesh.hpp).

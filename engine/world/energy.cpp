@@ -16,10 +16,11 @@ namespace {
 // work of gravity: per block, summed in block order.
 struct BlockEnergy {
   double kinetic_before = 0, kinetic_after = 0, strain_before = 0, strain_after = 0, gravity = 0;
+  double damping = 0;  // work of the strains' damping (≤ 0), with the VBC dashpots' ("viscous")
 };
 
 BlockEnergy block_energy(const Blocks& blocks, const VecX& d, const TimeScheme& scheme, std::span<const Mat3> elastic,
-                         const Vec2& gravity) {
+                         const Vec2& gravity, double strain_damping) {
   BlockEnergy e;
   for (std::size_t b = 0; b < blocks.count(); ++b) {
     const Vec6 db = d.segment<6>(6 * b);
@@ -33,6 +34,12 @@ BlockEnergy block_energy(const Blocks& blocks, const VecX& d, const TimeScheme& 
     e.strain_before += 0.5 * blocks.area[b] * before.dot(c * before);
     e.strain_after += 0.5 * blocks.area[b] * after.dot(c * after);
     e.gravity += blocks.mass[b] * gravity.dot(db.head<2>());
+    if (strain_damping > 0) {
+      // The damping force at the step's start and end strain rates, over the
+      // step's strain increment (as a VBC dashpot's work).
+      const Mat3 c = strain_damping * blocks.area[b] * elastic[blocks.material[b]];
+      e.damping -= 0.5 * (c * (s.velocity.tail<3>() + v1.tail<3>())).dot(db.tail<3>());
+    }
   }
   return e;
 }
@@ -70,7 +77,7 @@ ContactEnergy contact_energy(std::span<const Contact> contacts, const ContactLin
 
 void account_step_energy(WorldState& w, const VecX& d, const TimeScheme& scheme, std::span<const Mat3> elastic,
                          const ContactLinearisation& lin, const ContactParameters& contact_law, double fixed_spring) {
-  const BlockEnergy blocks = block_energy(w.blocks, d, scheme, elastic, w.controls.gravity);
+  const BlockEnergy blocks = block_energy(w.blocks, d, scheme, elastic, w.controls.gravity, w.controls.strain_damping);
   const ContactEnergy contacts = contact_energy(w.contacts, lin, d, contact_law);
   const Loads::Work loads = w.loads.step_work(w.blocks, d);
   const Boundaries::Work bounds = w.boundaries.step_work(w.time, w.time + w.dt, fixed_spring, w.blocks, d, scheme);
@@ -84,7 +91,7 @@ void account_step_energy(WorldState& w, const VecX& d, const TimeScheme& scheme,
   step.pressure = loads.pressure;
   step.targets = bounds.targets;
   step.fixed_points = bounds.fixed_points;
-  step.viscous = bounds.viscous;
+  step.viscous = bounds.viscous + blocks.damping;
   step.spring_boundaries = bounds.springs;
   step.friction = contacts.friction;
   const double contact_before = w.energy.started ? w.energy.total.contact : 0.0;

@@ -14,7 +14,7 @@ struct EnergyTerms {
   double contact = 0;  // ½N²/k_n (+ ½S²/k_s locked) per closed contact
   // Work done on the blocks (negative: taken from them).
   double gravity = 0, point_loads = 0, pressure = 0, targets = 0, fixed_points = 0;
-  double viscous = 0;            // VBC dashpots (≤ 0: absorbed)
+  double viscous = 0;            // VBC dashpots and the strains' damping (≤ 0: absorbed)
   double spring_boundaries = 0;  // SBC springs (≤ 0)
   double friction = 0;           // sliding contacts (≤ 0: dissipated)
   // (held now − held before) − work: energy the time integrator (and the

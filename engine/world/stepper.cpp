@@ -238,7 +238,7 @@ void Stepper::assemble_own_terms(WorldState& w) {
   StageTimer timer(stats_.profile, Stage::Assemble);
   const Controls& c = w.controls;
   const double t_end = w.time + w.dt;
-  assemble_block_terms(w.blocks, elastic_, c.gravity, scheme_, own_);
+  assemble_block_terms(w.blocks, elastic_, c.gravity, c.strain_damping, scheme_, own_);
   w.loads.add_terms(t_end, w.blocks, own_);
   w.boundaries.add_terms(t_end, c.fixed_point_factor * g0_, w.blocks, scheme_, own_);
 }
