@@ -304,8 +304,8 @@ bool slid_past_end(const BlockPolygons& blocks, const Contact& c) {
 // δ·(2 + 4|r|/l): a rate of change per unit δ. A test's room to its
 // threshold divided by the sum of such rates bounds δ. Halved, less an
 // allowance for rounding (far above the tests' own rounding errors), and at
-// most an eighth of the edges (so no edge shrinks to nothing), it is the
-// slack.
+// most an eighth of the edge (which then cannot shrink to nothing), it is
+// the slack.
 namespace {
 double safe_slack(double room, double rate, double size, double coordinates) {
   const double slack = std::min(0.5 * room / rate, size / 8) - 1e-9 * (coordinates + size);
@@ -347,7 +347,7 @@ double aligned_slack(const BlockPolygons& blocks, const AlignedEdges& e) {
   const double shorter = std::min(ea.length, eb.length);
   const double room = std::max(0.0, e.overlap) + kAlignedSlide * kEndTie * shorter - facing_span(ea, eb).overlap();
   // The overlap min(l_b, s0) - max(0, s1): s0 and s1 are r·t of ea's ends
-  // along eb (each at least as fast as eb's length); the tie moves at most
+  // along eb (each rate at least l_b's, 2); the tie moves at most
   // 2·kEndTie·δ.
   const double rate =
       4 + 4 * ((ea.p0 - eb.p0).norm() + (ea.p1 - eb.p0).norm()) / eb.length + 2 * kAlignedSlide * kEndTie;

@@ -11,6 +11,7 @@
 // runs again only once its blocks' bounds have used up its slack: a skipped
 // test would have answered false, so the answers, and the steps, are those
 // of testing everything every step, bit for bit (docs/contacts.md).
+#include <algorithm>
 #include <span>
 #include <vector>
 
@@ -33,10 +34,12 @@ class TransferWatch {
   // `aligned` being the list followed since the last forget().
   bool aligned_slid(const BlockPolygons& blocks, std::span<const AlignedEdges> aligned);
   // A new contact list (a search, a restored checkpoint): every test runs
-  // at the next check.
+  // at the next check. (The bounds start again from 0: they stay small,
+  // and their sums exact to far below any slack.)
   void forget() {
     contacts_.clear();
     aligned_.clear();
+    std::fill(moved_.begin(), moved_.end(), 0.0);
   }
 
  private:
