@@ -52,15 +52,13 @@ bool ContactDetection::detect(const Blocks& blocks, double range, std::vector<Co
   };
   // A vertex gone round the corner of its contact's edge, or slid past its
   // end, is searched again: it belongs to the next edge there or to a
-  // vertex-vertex contact (contact transfer, docs/contacts.md).
-  const bool left_an_edge = parallel_max<int>(contacts.size(), 0, [&](std::size_t i) {
-                              return passed_corner(polys, contacts[i]) || slid_past_end(polys, contacts[i]) ? 1 : 0;
-                            }) != 0;
-  // Aligned edges slid past each other's corner: their contacts are missing
-  // or too weak (narrow_phase.hpp).
-  const bool aligned_slid = parallel_max<int>(aligned_.size(), 0, [&](std::size_t i) {
-                              return aligned_edges_slid(polys, aligned_[i]) ? 1 : 0;
-                            }) != 0;
+  // vertex-vertex contact (contact transfer, docs/contacts.md). So are
+  // aligned edges slid past each other's corner: their contacts are missing
+  // or too weak (narrow_phase.hpp). The watch tests only what can have
+  // changed since its last test (transfer_watch.hpp).
+  watch_.follow(polys);
+  const bool left_an_edge = watch_.left_an_edge(polys, contacts);
+  const bool aligned_slid = watch_.aligned_slid(polys, aligned_);
   if (!left_an_edge && !aligned_slid && !list_is_stale(blocks, range)) {
     // Same contacts: refresh their linearisation from the current geometry.
     lin.gradients.resize(contacts.size());
@@ -74,6 +72,7 @@ bool ContactDetection::detect(const Blocks& blocks, double range, std::vector<Co
   auto pairs = find_candidate_pairs(polys, settings.range);
   drop_pairs_inside_meshes(blocks, pairs);
   std::vector<Contact> found = detect_contacts(polys, blocks.edge_joint, pairs, settings, &aligned_);
+  watch_.forget();
   drop_contacts_inside_meshes(blocks, found);
   detected_vertices_ = blocks.vertices;
   rotation_since_detection_.assign(blocks.count(), 0.0);

@@ -12,7 +12,9 @@
 // each other's corner (AlignedEdges, narrow_phase.hpp): the search left them
 // without a contact, or with one scaled by their short overlap, and a
 // vertex would otherwise sink unresisted into the other block's edge
-// (docs/contacts.md). The linearisation is refreshed every step.
+// (docs/contacts.md); both are tested only where the blocks have moved
+// enough to change the answer (transfer_watch.hpp). The linearisation is
+// refreshed every step.
 #include <span>
 #include <vector>
 
@@ -20,6 +22,7 @@
 #include "contact/contact.hpp"
 #include "contact/contact_law.hpp"
 #include "contact/narrow_phase.hpp"
+#include "contact/transfer_watch.hpp"
 
 namespace dda {
 
@@ -57,6 +60,7 @@ class ContactDetection {
   template <class Archive>
   void fields(Archive& ar) {
     ar(auto_range_, first_detection_, detected_vertices_, rotation_since_detection_, detected_range_, aligned_);
+    if constexpr (Archive::reading) watch_.forget();  // (a cache: the next checks are exact)
   }
 
  private:
@@ -68,6 +72,7 @@ class ContactDetection {
   std::vector<double> rotation_since_detection_;
   double detected_range_ = 0;
   std::vector<AlignedEdges> aligned_;  // aligned edges at the last search, watched for sliding
+  TransferWatch watch_;                // when the contact-transfer checks can have changed their answer
 };
 
 }  // namespace dda

@@ -296,6 +296,65 @@ bool slid_past_end(const BlockPolygons& blocks, const Contact& c) {
   return along < -tie || along > length + tie;
 }
 
+// The slacks: each test compares a distance (along or off an edge) with a
+// threshold. Let every vertex of the two blocks move by at most δ. The
+// vertex-to-edge vector r = v - p0 then changes by at most 2δ, the edge
+// (length l) by 2δ, and its unit direction t and normal n by at most 4δ/l
+// (|u/|u| - w/|w|| <= 2|u - w|/|u|), so r·t and r·n change by at most
+// δ·(2 + 4|r|/l): a rate of change per unit δ. A test's room to its
+// threshold divided by the sum of such rates bounds δ. Halved, less an
+// allowance for rounding (far above the tests' own rounding errors), and at
+// most an eighth of the edge (which then cannot shrink to nothing), it is
+// the slack.
+namespace {
+double safe_slack(double room, double rate, double size, double coordinates) {
+  const double slack = std::min(0.5 * room / rate, size / 8) - 1e-9 * (coordinates + size);
+  return slack > 0 ? slack : 0;  // also when room is NaN (a degenerate edge)
+}
+double magnitude(const Vec2& p) { return p.cwiseAbs().maxCoeff(); }
+}  // namespace
+
+double transfer_slack(const BlockPolygons& blocks, const Contact& c) {
+  const int b = c.eblock, f = c.edge;
+  const Vec2& v = blocks.vertex(c.vblock, c.vertex);
+  const Vec2 &p0 = blocks.vertex(b, f), &p1 = blocks.vertex(b, f + 1);
+  const Vec2 &before = blocks.vertex(c.vblock, c.vertex - 1), &after = blocks.vertex(c.vblock, c.vertex + 1);
+  const Vec2 d = p1 - p0, r = v - p0;
+  const double length = d.norm();
+  const Vec2 t = d / length, n(t.y(), -t.x());
+  const double along = r.dot(t), depth = -r.dot(n);
+  const double drift = 2 + 4 * r.norm() / length;  // rate of along and of depth
+  // passed_corner is false while depth <= kCornerMargin·length.
+  const double corner_room = kCornerMargin * length - depth;
+  const double corner_rate = drift + 2 * kCornerMargin;
+  // slid_past_end is false while -tie <= along <= length + tie, the tie of
+  // either end being at least the smaller of the reflex and the convex one
+  // (which moves at most 2·kEndTie·δ; the length at most 2δ).
+  const double own = std::max((v - before).norm(), (after - v).norm());
+  const double tie = std::min(kCornerMargin * length, kEndTie * std::min(length, own));
+  const double end_room = std::min(along + tie, length + tie - along);
+  const double end_rate = drift + 2 + 2 * kEndTie;
+  const double coordinates =
+      std::max({magnitude(v), magnitude(p0), magnitude(p1), magnitude(before), magnitude(after)});
+  return std::min(safe_slack(corner_room, corner_rate, length, coordinates),
+                  safe_slack(end_room, end_rate, length, coordinates));
+}
+
+double aligned_slack(const BlockPolygons& blocks, const AlignedEdges& e) {
+  if (e.a >= blocks.count() || e.b >= blocks.count() || e.edge_a >= blocks.size(e.a) || e.edge_b >= blocks.size(e.b))
+    return 0;
+  const Edge ea = make_edge(blocks, e.a, e.edge_a), eb = make_edge(blocks, e.b, e.edge_b);
+  const double shorter = std::min(ea.length, eb.length);
+  const double room = std::max(0.0, e.overlap) + kAlignedSlide * kEndTie * shorter - facing_span(ea, eb).overlap();
+  // The overlap min(l_b, s0) - max(0, s1): s0 and s1 are r·t of ea's ends
+  // along eb (each rate at least l_b's, 2); the tie moves at most
+  // 2·kEndTie·δ.
+  const double rate =
+      4 + 4 * ((ea.p0 - eb.p0).norm() + (ea.p1 - eb.p0).norm()) / eb.length + 2 * kAlignedSlide * kEndTie;
+  const double coordinates = std::max({magnitude(ea.p0), magnitude(ea.p1), magnitude(eb.p0), magnitude(eb.p1)});
+  return safe_slack(room, rate, shorter, coordinates);
+}
+
 namespace {
 void detect_with_table(const BlockPolygons& blocks, const EdgeTable& table, std::span<const int> edge_joint, int a,
                        int b, const NarrowPhaseSettings& settings, std::vector<Contact>& out,

@@ -72,6 +72,16 @@ inline constexpr double kCornerRatio = 10;
 bool slid_past_end(const BlockPolygons& blocks, const Contact& c);
 inline constexpr double kEndTie = 0.05;
 
+// How far every vertex of contact c's two blocks may move (m, each by at
+// most this much, by any motion: translation, rotation, strain) with neither
+// passed_corner nor slid_past_end able to turn true: a Lipschitz bound of
+// the two tests' distances to their thresholds, halved for rounding. 0 where
+// a test is true, or its answer does not rest on a distance to spare (a
+// vertex deeper than the corner margin). The transfer watch
+// (contact/transfer_watch.hpp) runs the exact tests only once the blocks may
+// have moved this far.
+double transfer_slack(const BlockPolygons& blocks, const Contact& c);
+
 // Two facing edges that touch (normal gap within kCornerMargin of the
 // shorter edge) with their ends within the facing edges' tie (kEndTie of the
 // shorter edge) of each other along the line: aligned corners, as at a joint
@@ -95,6 +105,10 @@ struct AlignedEdges {
 // longer exist (the blocks changed).
 bool aligned_edges_slid(const BlockPolygons& blocks, const AlignedEdges& e);
 inline constexpr double kAlignedSlide = 0.1;
+
+// How far every vertex of the two blocks may move with aligned_edges_slid
+// staying false (as transfer_slack; 0 where it is true).
+double aligned_slack(const BlockPolygons& blocks, const AlignedEdges& e);
 
 // Every pair in parallel; the result is ordered by pair, then identity,
 // whatever the thread count. `aligned`, when given, receives the pairs'
