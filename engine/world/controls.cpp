@@ -87,10 +87,9 @@ const ControlSpec kControls[] = {
         "open-close iterations before Δt is cut and the step redone"),
     number(
         "contact_tolerance", [](Controls& c) -> double& { return c.contact_tolerance; }, kZeroOrPositive,
-        "open-close hysteresis, fraction of half the model height: of every decision under "
-        "`contact_law = \"shi\"`; under `\"holding\"` of gap decisions and intact joints only (the friction "
-        "decisions of other contacts have a band of their own, a hundredth of the spread of the step's "
-        "block translations: docs/contacts.md)"),
+        "open-close hysteresis under `contact_law = \"shi\"`, fraction of half the model height, of every "
+        "decision; `\"holding\"` does not use it: its bands are shares of the spread of the step's block "
+        "translations, 1e-2 for friction and 1e-4 for gaps and intact joints (docs/contacts.md)"),
     choice(
         "contact_law", kContactLawNames, [](const Controls& c) { return static_cast<int>(c.contact_law); },
         [](Controls& c, int i) { c.contact_law = static_cast<ContactLaw>(i); },
