@@ -196,15 +196,20 @@ TEST(Friction, SlidesAtTheClosedFormRate) {
 // inside a model 100 times taller (a block fixed 300 m below) slides at the
 // same rate, before (25.2° on 25°) the hysteresis, ks × 1e-9 × half the
 // model's height, grew to 3.7e4 N per contact there. Reference: the small
-// model's rate; bound 1e-6 of it. (The gap decisions' band is still a
-// fraction of the model's height: the start, where the block rocks on its
-// springs, differs, 1.6 % of the slip after 0.3 s.)
+// model's rate; bound 1e-6 of it. With the gap decisions' band in the
+// step's units too, the start (where the block rocks on its springs) is the
+// same: the slip after 0.3 s, bound 1e-9 of it (measured 1e-13; with the gap
+// band a fraction of the model's height it differed by 1.6 %).
 TEST(Friction, SameSlidingRateInAModelHundredTimesLarger) {
   Incline small(25.2, 25, 1e-3), large(25.2, 25, 1e-3, 300);
   ASSERT_GT(large.w.half_height(), 50 * small.w.half_height());
   const Slide a_small = measure_slide(25.2, 25, 1e-3, 0.3), a_large = measure_slide(25.2, 25, 1e-3, 0.3, 300);
   ASSERT_GT(a_small.acceleration, 0.03);
   EXPECT_NEAR(a_large.acceleration, a_small.acceleration, 1e-6 * a_small.acceleration);
+  small.run_to(0.3);
+  large.run_to(0.3);
+  ASSERT_GT(small.slip(), 1e-3);
+  EXPECT_NEAR(large.slip(), small.slip(), 1e-9 * small.slip());
 }
 
 // The friction band ignores a translation every block shares: the incline of
@@ -328,18 +333,23 @@ TEST(Friction, LandingBlockMovesTheSameInAModelHundredTimesLarger) {
 
 // A block 1 µm above the slope (scripts/incline.lua; 30° on 20°) slides
 // from its landing step on: ½·a·t² at t = 1.2 s within 0.1 %, at Δt = 1e-2 s
-// and 1e-3 s (measured: within 1e-5). Before: its contacts closed locked with
-// 2217 N and 966 N of shear against 1581 N and 423 N of friction, under a
-// friction band of k_s × 1 % of the landing's micrometre; it slid a step late,
-// 2s/t² 1.7 % low at Δt = 1e-2 s and 0.2 % low at 1e-3 s.
+// and 1e-3 s, and for contact springs g0 = 5E, 50E and 500E alike: the
+// rigid block's rate does not depend on the penalty spring (measured: within
+// 2e-7 at 1e-2 s, 2.8e-6 at 1e-3 s, for every g0). Before (g0 = 50E): its
+// contacts closed locked with 2217 N and 966 N of shear against 1581 N and
+// 423 N of friction, under a friction band of k_s × 1 % of the landing's
+// micrometre; it slid a step late, 2s/t² 1.7 % low at Δt = 1e-2 s and 0.2 %
+// low at 1e-3 s.
 TEST(Friction, BlockLandingFromAMicrometreSlidesFromItsFirstStep) {
   const double a = closed_form_acceleration(30, 20);
-  for (const double dt : {1e-2, 1e-3}) {
-    Incline s(30, 20, dt, 0, 0, 1e-6);
-    s.run_to(1.2);
-    const double t = s.w.time();
-    EXPECT_NEAR(2 * s.slip() / (t * t), a, 1e-3 * a) << "Δt " << dt;
-  }
+  for (const double dt : {1e-2, 1e-3})
+    for (const double g0_over_e : {5.0, 50.0, 500.0}) {
+      Incline s(30, 20, dt, 0, 0, 1e-6);
+      s.w.controls().g0 = g0_over_e * test::granite().youngs;
+      s.run_to(1.2);
+      const double t = s.w.time();
+      EXPECT_NEAR(2 * s.slip() / (t * t), a, 1e-3 * a) << "Δt " << dt << ", g0 = " << g0_over_e << " E";
+    }
 }
 
 // A block moving at 2 m/s along a flat face dropped 1 m onto it, φ = 45°:
