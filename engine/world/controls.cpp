@@ -95,11 +95,11 @@ const ControlSpec kControls[] = {
         [](Controls& c, int i) { c.contact_law = static_cast<ContactLaw>(i); },
         "`\"holding\"`: a contact's shear force is continuous through its changes of state (a contact "
         "that locks again keeps the force its spring carried), friction agrees with the normal force of "
-        "the accepted solve, friction decisions have a band of their own in the contact's motion, and joints "
-        "without cohesion or tension are unbonded from the start: a block that must hold on a slope holds at "
-        "every Δt; not yet the default: at Δt ≤ 1e-5 s a sliding block chatters (under `\"shi\"` too), "
-        "and a block landing at Δt = 1e-2 s starts sliding late. `\"shi\"` (default): Shi's law as the engine has "
-        "always had it: "
+        "the accepted solve, its open-close and friction decisions have bands in the step's units (no "
+        "length of the model, no force through g0), and joints without cohesion or tension are unbonded "
+        "from the start: a block that must hold on a slope holds at every Δt; not yet the default: at Δt ≤ "
+        "1e-5 s a sliding block chatters (under `\"shi\"` too). `\"shi\"` (default): Shi's law as the engine "
+        "has always had it: "
         "a contact that closes or locks again does so unloaded, and a block that must stay on a slope creeps "
         "down it at small Δt; the paper's scripts pin it to reproduce the paper's figures (docs/contacts.md)"),
     number(
