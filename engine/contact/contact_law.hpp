@@ -56,6 +56,11 @@ struct ContactIterate {
   double s0 = 0;
   double normal_force = 0;  // from the previous iteration: drives sliding friction
   double shear = 0;         // shear ds at the last check (m)
+  // Closed at the start of the step. A contact that was open approaches in
+  // the step: under the holding law it decides friction with the gap band,
+  // not the friction band of a share of the step's translations, which for a
+  // block landing fast is many times the force that stops it (open_close.cpp).
+  bool closed_at_start = false;
 };
 
 // A contact's springs: normal on a closed contact, shear on a locked one.
@@ -70,12 +75,14 @@ struct ContactMotion {
   double dn = 0;           // penetration after the step (positive: the vertex is inside)
   double ds = 0;           // shear from the reference point after the step
   double ds_step = 0;      // shear motion in the step (the sliding direction)
-  double gap_slack = 0;    // the hysteresis of gap decisions and intact joints (m): the model-wide band
+  double gap_slack = 0;    // the hysteresis of gap decisions and intact joints (m): contact_slack under
+                           // the holding law, the model-wide band under Shi's
   double shear_slack = 0;  // the hysteresis of friction decisions (m): contact_slack under the holding
                            // law, the model-wide band under Shi's
 };
 
-// The friction band of the holding law, in the step's own units: a
+// The bands of the holding law (friction; with a smaller share, gaps and
+// intact joints), in the step's own units: a
 // displacement, the tolerance's share of the spread of the step's block
 // translations (a translation all blocks share drops out: a shaken base), and
 // at least round-off of the contact's edge's length. The decision values come

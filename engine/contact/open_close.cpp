@@ -26,7 +26,8 @@ void start_open_close(std::span<const Contact> contacts, const ContactLinearisat
   parallel_for_each(
       contacts.size(),
       [&](std::size_t i) {
-        s.iterate[i] = {lin.offsets[i].s0, contacts[i].normal_force, lin.offsets[i].s0};
+        s.iterate[i] = {lin.offsets[i].s0, contacts[i].normal_force, lin.offsets[i].s0,
+                        contacts[i].state != ContactState::Open};
       },
       1024);
 }
@@ -40,6 +41,15 @@ namespace {
 // The holding law's hysteresis of friction decisions: this share of the
 // spread of the step's block translations (contact_slack).
 constexpr double kFrictionTolerance = 1e-2;
+// ... and of gap decisions and intact joints: a hundredth of the friction's.
+// A gap's band is a penetration that carries no force: it must stay well
+// below the penetrations that carry the loads (a brick's weight on its
+// springs, 5e-8 m, is 1e-2 of a settling wall's spread, where the friction's
+// share made the walls' answer depend on the iteration's path), yet above
+// the error of the loose solves on contacts that carry nothing (1e-6 and
+// below: wall(20) with gg = 1 cut 11 of its 30 steps, against 2).
+// docs/contacts.md has the measurements.
+constexpr double kGapTolerance = 1e-4;
 constexpr double kInfinity = std::numeric_limits<double>::infinity();
 // Friction consistency (check_contact_states): the share of N to which the
 // normal force of a sliding contact's friction must agree with its solve's,
@@ -50,17 +60,25 @@ constexpr int kMaxFrictionPasses = 1;
 // A contact's motion under the displacement d of a solve (or of a warm
 // start), from the shear offset s0 in force.
 ContactMotion contact_motion(const ContactGradients& k, const ContactOffsets& o, const VecX& d, const Contact& c,
-                             double s0, const ContactParameters& p, double step_motion) {
+                             double s0, const ContactParameters& p, double step_motion, bool closed_at_start) {
   const auto dv = d.segment<6>(6 * c.vblock);
   const auto de = d.segment<6>(6 * c.eblock);
   ContactMotion m;
   m.dn = o.d0 + k.en_v.dot(dv) + k.en_e.dot(de);  // summed from d0 on: every law's gap to the last bit
   m.ds_step = k.es_v.dot(dv) + k.es_e.dot(de);
   m.ds = s0 + m.ds_step;
-  m.gap_slack = p.tolerance;
-  // Shi's law decides friction with the model-wide band of the gap decisions.
-  m.shear_slack =
-      p.law == ContactLaw::Shi ? p.tolerance : contact_slack(kFrictionTolerance, step_motion, o.edge_length);
+  if (p.law == ContactLaw::Shi) {
+    // Shi's law: every decision has the model-wide band.
+    m.gap_slack = m.shear_slack = p.tolerance;
+    return m;
+  }
+  m.gap_slack = contact_slack(kGapTolerance, step_motion, o.edge_length);
+  // A contact open at the step start approaches in it: the friction band, a
+  // share of the step's translations, is then a share of its own approach
+  // (a block landing at 7.7 m/s, Δt = 1 ms: ks × 77 µm, 7.7e6 N against the
+  // 1e6 N that stop it), and its contact would lock and throw it back. It
+  // decides friction with the gap band, as its gap.
+  m.shear_slack = closed_at_start ? contact_slack(kFrictionTolerance, step_motion, o.edge_length) : m.gap_slack;
   return m;
 }
 
@@ -123,7 +141,8 @@ void predict_contact_states(std::span<Contact> contacts, const ContactLinearisat
         if (c.intact) return;
         const ContactIterationState before = iteration_state(c);
         const ContactIterate iterate = s.iterate[i];
-        const ContactMotion m = contact_motion(lin.gradients[i], lin.offsets[i], d, c, iterate.s0, p, step_motion);
+        const ContactMotion m =
+            contact_motion(lin.gradients[i], lin.offsets[i], d, c, iterate.s0, p, step_motion, iterate.closed_at_start);
         update_contact_state(c, s.iterate[i], p.joints[c.joint], p.tan_friction[c.joint], contact_springs(c, p), m,
                              p.law);
         if (before.state != ContactState::Open && c.state == ContactState::Open) {
@@ -144,7 +163,8 @@ bool check_contact_states(std::span<Contact> contacts, const ContactLinearisatio
   const int any_changed = parallel_max<int>(nc, 0, [&](std::size_t i) {
     Contact& c = contacts[i];
     const ContactSprings springs = contact_springs(c, p);
-    const ContactMotion m = contact_motion(lin.gradients[i], lin.offsets[i], d, c, s.iterate[i].s0, p, step_motion);
+    const ContactMotion m = contact_motion(lin.gradients[i], lin.offsets[i], d, c, s.iterate[i].s0, p, step_motion,
+                                           s.iterate[i].closed_at_start);
     const double tan_phi = p.tan_friction[c.joint];
     const ContactState before = c.state;
     const double friction_normal = s.iterate[i].normal_force;  // the N this solve's friction used

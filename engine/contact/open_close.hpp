@@ -17,7 +17,7 @@ namespace dda {
 struct ContactParameters {
   double g0 = 0;           // normal spring (resolved: never 0)
   double shear_ratio = 0;  // shear spring / normal spring
-  double tolerance = 0;    // open-close hysteresis of gap decisions (m)
+  double tolerance = 0;    // Shi's law: the band of every decision (m), contact_tolerance × half the height
   std::span<const JointMaterial> joints;
   std::span<const double> tan_friction;  // tan φ per joint material
 

@@ -87,21 +87,20 @@ const ControlSpec kControls[] = {
         "open-close iterations before Δt is cut and the step redone"),
     number(
         "contact_tolerance", [](Controls& c) -> double& { return c.contact_tolerance; }, kZeroOrPositive,
-        "open-close hysteresis, fraction of half the model height: of every decision under "
-        "`contact_law = \"shi\"`; under `\"holding\"` of gap decisions and intact joints only (the friction "
-        "decisions of other contacts have a band of their own, a hundredth of the spread of the step's "
-        "block translations: docs/contacts.md)"),
+        "open-close hysteresis under `contact_law = \"shi\"`, fraction of half the model height, of every "
+        "decision; `\"holding\"` does not use it: its bands are shares of the spread of the step's block "
+        "translations, 1e-2 for friction and 1e-4 for gaps and intact joints (docs/contacts.md)"),
     choice(
         "contact_law", kContactLawNames, [](const Controls& c) { return static_cast<int>(c.contact_law); },
         [](Controls& c, int i) { c.contact_law = static_cast<ContactLaw>(i); },
         "`\"holding\"`: a contact's shear force is continuous through its changes of state (a contact "
         "that locks again keeps the force its spring carried), friction agrees with the normal force of "
-        "the accepted solve, friction decisions have a band of their own in the contact's motion, and joints "
-        "without cohesion or tension are unbonded from the start: a block that must hold on a slope holds at "
-        "every Δt; not yet the default: at Δt ≤ 1e-5 s a sliding block chatters (under `\"shi\"` too; "
-        "`strain_damping` cures it), "
-        "and a block landing at Δt = 1e-2 s starts sliding late. `\"shi\"` (default): Shi's law as the engine has "
-        "always had it: "
+        "the accepted solve, its open-close and friction decisions have bands in the step's units (no "
+        "length of the model, no force through g0), and joints without cohesion or tension are unbonded "
+        "from the start: a block that must hold on a slope holds at every Δt; not yet the default: at Δt ≤ "
+        "1e-5 s a sliding block chatters (under `\"shi\"` too; `strain_damping` cures it). `\"shi\"` (default): Shi's "
+        "law as the engine "
+        "has always had it: "
         "a contact that closes or locks again does so unloaded, and a block that must stay on a slope creeps "
         "down it at small Δt; the paper's scripts pin it to reproduce the paper's figures (docs/contacts.md)"),
     number(

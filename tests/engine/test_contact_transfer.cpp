@@ -24,14 +24,6 @@ namespace {
 
 constexpr double kG = 9.81;
 const ContactLaw kLaws[] = {ContactLaw::Shi, ContactLaw::Holding};
-// The staircase runs under Shi's law only: under "holding", the block landing
-// at 4–8 m/s after a step is thrown back. Its friction band (1 % of the
-// step's largest block translation, times k_s: 7.7e6 N at 7.7 m/s and
-// Δt = 1 ms) exceeds the force that stops the block in a step (m·v/Δt =
-// 1e6 N), so the landing contact locks even at φ = 0 and its shear spring
-// returns the block at −3.7 m/s. That band is the friction work's (issue 22,
-// items 2–4; docs/contacts.md), not the contact transfer's.
-const ContactLaw kShiOnly[] = {ContactLaw::Shi};
 const char* name(ContactLaw law) { return law == ContactLaw::Shi ? "shi" : "holding"; }
 
 using test::add_fixed_block;
@@ -196,7 +188,7 @@ struct Staircase {
 // tread by more than the g2 bound (0.01 × half the model's height), and no
 // step may stall.
 TEST(ContactTransfer, BlockSlidesDownFrictionlessStepsKeepingItsEnergy) {
-  for (const ContactLaw law : kShiOnly) {
+  for (const ContactLaw law : kLaws) {
     Staircase s(30, 0, law);
     const double y0 = s.w.block_centroid(s.block).y(), m = s.w.block_mass(s.block);
     const double bound = s.w.controls().g2 * s.w.half_height();
@@ -225,7 +217,7 @@ TEST(ContactTransfer, BlockSlidesDownFrictionlessStepsKeepingItsEnergy) {
 TEST(ContactTransfer, BlockSlidesDownStepsAtTheFrictionRateOnEachFace) {
   const double a = 30, phi = 20;
   const double closed_form = kG * (std::sin(deg_to_rad(a)) - std::cos(deg_to_rad(a)) * std::tan(deg_to_rad(phi)));
-  for (const ContactLaw law : kShiOnly) {
+  for (const ContactLaw law : kLaws) {
     Staircase s(a, phi, law, 3, 4.0, 0.01);
     const double bound = s.w.controls().g2 * s.w.half_height();
     double sunk = 0;
