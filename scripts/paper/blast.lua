@@ -37,6 +37,11 @@
 --          --set spacing=1: joints 1 m apart instead of the paper's 2 m (slivers
 --          under 1 % of a block merged); output tags end in _h1
 --            --set figure=15    100 m, DHI, 0.05 s, Fixed vs VBC vs SBC (Figs. 15-18)
+--            --set figure=mesh  one run per element size of --set meshes=1,0.5,0.25
+--                               (coarse to fine; with --set mesh_radius, t_end): the
+--                               PPV convergence table, blast_mesh_convergence.csv;
+--                               --set max_change=0.05: an error unless the two finest
+--                               sizes' PPVs at MP1 differ by less than 5 %
 --          --set check=true: a short test run (default t_end = 3 ms) that
 --          raises an error unless the first arrival at MP1 matches the P-wave
 --          travel time and no contact penetrates beyond the g2 bound. Arrival:
@@ -67,10 +72,13 @@
 --          blast_<tag>_vy_MP1.png y-velocity at MP1
 --          blast_<tag>_frames/    sigma_yy frames every `frames` s (when > 0)
 --          blast_runs.csv         one row per run appended: tag, blocks, steps,
---                                 wall time, PPVs at MP1/MP2/MP3, step cuts
+--                                 wall time, PPVs at MP1/MP2/MP3, step cuts, elements
+--                                 (each element of a meshed block), CG iterations, CPU s
 --          result.csv             without figure=: ppv_mp1/2/3, t_peak_mp1, blocks,
 --                                 steps, step_cuts, wall_s (a row of a dda sweep table)
---          with figure=...: fig<id>_*.png comparison plots.
+--          with figure=...: fig<id>_*.png comparison plots; figure=mesh:
+--                                 blast_mesh_convergence.csv (mesh_m, elements, steps,
+--                                 cpu_s, ppv_mp1, change, ...) and the table on stdout.
 
 local dda = require "dda"
 local docs_output = require "docs_output"
