@@ -87,6 +87,21 @@ endforeach()
 # docs/validation.md, Section 4). 4 ms (the peak comes at 1.9 ms).
 dda_run_test(paper.blast_ppv_h1 paper 600 paper/blast.lua --set spacing=1 --set t_end=0.004 --set expect_ppv=0.95
              --set ppv_tolerance=0.15)
+# The blast with meshed 2 m blocks (docs/validation.md, "Section 4 with meshed
+# 2 m blocks"). A 3 ms run of a 40 m model meshed at 1 m within 12 m of the
+# centre: the arrival and penetration checks above, the DHI's 2.03 m/s at the
+# roof's middle at 0.5 ms within 2 % (the wall of meshed elements moves as the
+# load prescribes), and MP1 reading the element under it (area at most 1 m^2,
+# its block's is 4 m^2).
+dda_run_test(paper.blast_meshed_check paper 300 paper/blast.lua --set check=true --set t_end=0.003 --set size=40
+             --set mesh=1 --set mesh_radius=12)
+# The PPV at MP1 with meshed 2 m blocks, 1 m and 0.5 m elements within 12 m
+# (5 ms): the two coarse rows of the convergence table agree within 5 %
+# (measured 2.072 and 2.008 m/s, -3.1 %). The issue's target, the two finest
+# meshes within 5 %, is not met (0.25 m: 2.362, 0.125 m: 1.217 m/s, a defect
+# of the meshed contacts at 0.125 m), so no test asserts it yet.
+dda_run_test(paper.blast_mesh_coarse long 1800 paper/blast.lua --set figure=mesh --set meshes=1,0.5
+             --set mesh_radius=12 --set t_end=0.005 --set max_change=0.05)
 # Where the 2 m joint pattern lies decides the PPV at MP1 (0.81 to 1.82 m/s over
 # one period of placements, scripts/paper/blast_joint_offset.lua). Four
 # placements, DHI and SHI, 12 ms: mirrored placements (d and 2.83 m - d) must give

@@ -1,7 +1,8 @@
 -- bench.lua: time one benchmark scene and append a row to a CSV table.
 --
 -- Models:  one scene of scenes.lua: --set scene=wall --set n=40 | scene=blast
---          --set h=2 | scene=bar; --set threads=1|2; --set steps=10 timed steps
+--          --set h=2 | scene=blast_meshed --set mesh=0.25 --set radius=12 (radius 0:
+--          every block meshed) | scene=bar; --set threads=1|2; --set steps=10 timed steps
 --          after --set warmup=2 untimed ones (another warmup names the row
 --          blast(0.5)@2500: timed after 2500 steps); --set pre=block_jacobi|multigrid
 --          forces a preconditioner (default: the scene's, auto); --set
@@ -45,10 +46,13 @@ if scene == "wall" then
 elseif scene == "blast" then
   local h = dda.param("h", 2)
   m, name = scenes.blast(h, threads), string.format("blast(%g)", h)
+elseif scene == "blast_meshed" then
+  local mesh, radius = dda.param("mesh", 0.25), dda.param("radius", 12)
+  m, name = scenes.blast_meshed(mesh, radius, threads), string.format("blast_meshed(%g,%g)", mesh, radius)
 elseif scene == "bar" then
   m, name = scenes.bar(threads), "bar"
 else
-  error("unknown scene '" .. tostring(scene) .. "' (wall, blast, bar)")
+  error("unknown scene '" .. tostring(scene) .. "' (wall, blast, blast_meshed, bar)")
 end
 
 if gg >= 0 then

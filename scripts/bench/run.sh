@@ -6,6 +6,7 @@
 #                                   # bench/results/<machine>.csv, overwriting it
 #   SCENES="wall:10 bar" scripts/bench/run.sh    # chosen scenes: the table on stdout
 #   SCENES="wall:200:3" scripts/bench/run.sh     # a third field: timed steps (default 10)
+#   SCENES="blast_meshed:0.25/12" scripts/bench/run.sh  # 2 m joints, meshed at 0.25 m within 12 m
 #   SCENES="blast:0.5:50:2500" scripts/bench/run.sh   # a fourth: untimed steps first (default 2);
 #                                                     # the row's scene is then blast(0.5)@2500
 #   SCENES="wall:40:10:2:cholmod:1" scripts/bench/run.sh  # a fifth: the solver (pcg or cholmod;
@@ -61,8 +62,11 @@ for s in $scenes; do
   case $name in
     wall) args=(--set scene=wall --set n="$arg" --set steps="${steps:-10}") ;;
     blast) args=(--set scene=blast --set h="$arg" --set steps="${steps:-10}") ;;
+    # blast_meshed:H/R: element size H, meshed within R m (scenes.lua)
+    blast_meshed) args=(--set scene=blast_meshed --set mesh="${arg%/*}" --set steps="${steps:-10}")
+      [[ $arg != */* ]] || args+=(--set radius="${arg#*/}") ;;
     bar) args=(--set scene=bar --set steps="${steps:-100}") ;;
-    *) echo "run.sh: unknown scene '$name' (wall, blast, bar)" >&2; exit 2 ;;
+    *) echo "run.sh: unknown scene '$name' (wall, blast, blast_meshed, bar)" >&2; exit 2 ;;
   esac
   [[ -z $skip ]] || args+=(--set warmup="$skip")
   [[ -z $solver ]] || args+=(--set solver="$solver")

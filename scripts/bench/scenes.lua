@@ -11,6 +11,12 @@
 --          blast(h)  the paper's Section 4 model (100 m square, sets at 45 and
 --                    135 deg with spacing h, chamber, DHI load on the chamber wall,
 --                    blocks under 0.01 h^2 merged into a neighbour).
+--          blast_meshed(H, R)  blast(2), the paper's 2 m joints, with the blocks
+--                    whose centroid lies within R m of the detonation centre meshed
+--                    into elements of about H m (R = 0: every block), joints of their
+--                    own stiffness 2*g0/2 m (as scripts/paper/blast.lua --set mesh=H
+--                    --set mesh_radius=R); concave blocks at the chamber corners stay
+--                    first-order (docs/meshed_blocks.md).
 --          bar       the paper's rock bar Model 1 (scripts/paper/bars.lua: 500
 --                    blocks, g1 = 2e-6 s, g0 = 20E, half-sine pressure at the
 --                    left end, right end fixed).
@@ -59,6 +65,15 @@ function scenes.blast(h, threads)
   -- Slivers (where joints pass close to the chamber corners) are merged: crushed
   -- by the chamber-wall targets they would force tiny steps.
   local b = blast_model.build{ size = 100, spacing = h, controls = { threads = threads }, min_area = 0.01 * h * h }
+  blast_model.load(b, "dhi")
+  b.outer:fix()
+  return b.m
+end
+
+function scenes.blast_meshed(mesh, radius, threads)
+  local blast_model = require_paper "blast_model"
+  local b = blast_model.build{ size = 100, spacing = 2, controls = { threads = threads }, mesh = mesh,
+                               mesh_radius = radius, kn = 2 * blast_model.controls.g0 / 2 }
   blast_model.load(b, "dhi")
   b.outer:fix()
   return b.m

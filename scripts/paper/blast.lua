@@ -37,6 +37,11 @@
 --          --set spacing=1: joints 1 m apart instead of the paper's 2 m (slivers
 --          under 1 % of a block merged); output tags end in _h1
 --            --set figure=15    100 m, DHI, 0.05 s, Fixed vs VBC vs SBC (Figs. 15-18)
+--            --set figure=mesh  one run per element size of --set meshes=1,0.5,0.25
+--                               (coarse to fine; with --set mesh_radius, t_end): the
+--                               PPV convergence table, blast_mesh_convergence.csv;
+--                               --set max_change=0.05: an error unless the two finest
+--                               sizes' PPVs at MP1 differ by less than 5 %
 --          --set check=true: a short test run (default t_end = 3 ms) that
 --          raises an error unless the first arrival at MP1 matches the P-wave
 --          travel time and no contact penetrates beyond the g2 bound. Arrival:
@@ -48,6 +53,15 @@
 --          Penetration: every contact, every 5 steps, against g2 x half height.
 --          --set contact_tolerance=X overrides the open-close hysteresis
 --          (fraction of half the model height; engine default 1e-9).
+--          --set mesh=H: blocks meshed into constant-strain triangles of about H m
+--          (docs/meshed_blocks.md; default 0, first-order blocks); --set
+--          mesh_radius=R: only the blocks whose centroid lies within R m of the
+--          detonation centre (default 0: every block). Meshed models give their
+--          joints the paper's stiffness per length, kn = 2*g0/spacing (1e11 Pa/m at
+--          2 m), so that a joint keeps its stiffness whatever the mesh (--set
+--          kn=K overrides it, Pa/m; kn=0 keeps the penalty g0 per contact). Tags
+--          end in _m<H>[_r<R>]. docs/validation.md, "Section 4 with meshed 2 m
+--          blocks", has the convergence runs.
 --          --set integrator=newmark|generalized_alpha: the time integrator
 --          (default "shi", the paper's, pinned whatever the engine's default);
 --          --set rho_inf=0.8: generalized-α's spectral radius at infinity.
@@ -58,10 +72,13 @@
 --          blast_<tag>_vy_MP1.png y-velocity at MP1
 --          blast_<tag>_frames/    sigma_yy frames every `frames` s (when > 0)
 --          blast_runs.csv         one row per run appended: tag, blocks, steps,
---                                 wall time, PPVs at MP1/MP2/MP3, step cuts
+--                                 wall time, PPVs at MP1/MP2/MP3, step cuts, elements
+--                                 (each element of a meshed block), CG iterations, CPU s
 --          result.csv             without figure=: ppv_mp1/2/3, t_peak_mp1, blocks,
 --                                 steps, step_cuts, wall_s (a row of a dda sweep table)
---          with figure=...: fig<id>_*.png comparison plots.
+--          with figure=...: fig<id>_*.png comparison plots; figure=mesh:
+--                                 blast_mesh_convergence.csv (mesh_m, elements, steps,
+--                                 cpu_s, ppv_mp1, change, ...) and the table on stdout.
 
 local dda = require "dda"
 local docs_output = require "docs_output"
@@ -84,6 +101,9 @@ local P = {
   rho_inf = dda.param("rho_inf", 0),            -- generalized-α's ρ∞ (0 = the engine's default)
   spacing = dda.param("spacing", 2),            -- m between joints (the paper: 2)
   expect_ppv = dda.param("expect_ppv", 0),      -- m/s: error unless the PPV at MP1 is within ppv_tolerance of it
+  mesh = dda.param("mesh", 0),                  -- m: element size of meshed blocks (0 = first-order blocks)
+  mesh_radius = dda.param("mesh_radius", 0),    -- m: mesh only blocks within it of the centre (0 = all)
+  kn = dda.param("kn", -1),                     -- Pa/m: joints' own stiffness (-1: 2*g0/spacing when meshed)
   ppv_tolerance = dda.param("ppv_tolerance", 0.15),
 }
 
@@ -94,10 +114,14 @@ for _, k in ipairs{ "size", "t_end", "line_step", "spacing", "ppv_tolerance" } d
     error(string.format("--set %s=%s: must be a number > 0", k, tostring(P[k])))
   end
 end
-for _, k in ipairs{ "frames", "contact_tolerance", "expect_ppv" } do
+for _, k in ipairs{ "frames", "contact_tolerance", "expect_ppv", "mesh", "mesh_radius" } do
   if type(P[k]) ~= "number" or not (P[k] >= 0) then
     error(string.format("--set %s=%s: must be a number >= 0", k, tostring(P[k])))
   end
+end
+
+if type(P.kn) ~= "number" or not (P.kn >= 0 or P.kn == -1) then
+  error(string.format("--set kn=%s: must be a number >= 0 (Pa/m; 0 = the penalty g0 per contact)", tostring(P.kn)))
 end
 
 local function ppv(mon, field)
@@ -119,6 +143,18 @@ local function run_case(cfg)
   local spacing = cfg.spacing or 2
   local tag = string.format("%s_%s_%g", cfg.load, cfg.boundary, cfg.size)
   if spacing ~= 2 then tag = tag .. string.format("_h%g", spacing) end
+  local mesh = cfg.mesh or 0
+  if mesh > 0 then
+    tag = tag .. string.format("_m%g", mesh)
+    if (cfg.mesh_radius or 0) > 0 then tag = tag .. string.format("_r%g", cfg.mesh_radius) end
+  end
+  -- the joints' own stiffness: a meshed block puts a contact at every node of
+  -- a joint, so the penalty g0 per contact would stiffen the joint with the
+  -- mesh; 2*g0/spacing is what a first-order block's two end contacts give a
+  -- full joint of the paper's (Eq. 4 read backwards, docs/time_integration.md)
+  local kn = cfg.kn or -1
+  if kn < 0 then kn = mesh > 0 and 2 * blast_model.controls.g0 / spacing or 0 end
+  if kn > 0 and mesh == 0 then tag = tag .. string.format("_kn%gG", kn / 1e9) end
   local controls = {}
   if (cfg.contact_tolerance or 0) > 0 then controls.contact_tolerance = cfg.contact_tolerance end
   controls.integrator = cfg.integrator or "shi"
@@ -126,10 +162,13 @@ local function run_case(cfg)
   -- finer joint sets cut slivers at the chamber corners: merge those under
   -- 1 % of a full block (as the benchmark scenes do)
   local M = blast_model.build{ size = cfg.size, spacing = spacing, controls = controls,
-                              min_area = spacing ~= 2 and 0.01 * spacing * spacing or nil }
+                              min_area = spacing ~= 2 and 0.01 * spacing * spacing or nil,
+                              mesh = mesh, mesh_radius = cfg.mesh_radius, kn = kn > 0 and kn or nil }
   local m, h = M.m, M.h
-  print(string.format("blast %s: %g m model, %d blocks, chamber wall %d edges (%.1f m), t_end = %g s",
-                      tag, cfg.size, #M.blocks, #M.wall, M.wall:length(), cfg.t_end))
+  local elements = m:block_count()   -- blocks, each element of a meshed block counted
+  local rock_blocks = M.rock_blocks  -- blocks cut by the joints, before meshing
+  print(string.format("blast %s: %g m model, %d blocks (%d with elements), chamber wall %d edges (%.1f m), t_end = %g s",
+                      tag, cfg.size, rock_blocks, elements, #M.wall, M.wall:length(), cfg.t_end))
 
   blast_model.load(M, cfg.load)
 
@@ -144,6 +183,8 @@ local function run_case(cfg)
   for _, mp in ipairs{ {"MP1", 0, 8}, {"MP2", -6, 5}, {"MP3", 0, h - 1} } do
     mons[mp[1]] = m:monitor{ at = {mp[2], mp[3]}, fields = fields, name = "blast_" .. tag .. "_" .. mp[1] }
   end
+  -- the roof's middle, just inside the rock: the DHI prescribes 2.03 m/s there
+  local roof = m:monitor{ at = {0, blast_model.chamber[4] + 1e-3}, fields = {"vy"}, csv = false }
   local line = {}
   local y = 4
   while y <= h - 2 + 1e-9 do
@@ -170,10 +211,12 @@ local function run_case(cfg)
       end
     end
   end
+  local cpu0 = os.clock()
   if callback then m:run{ time = cfg.t_end, every = 5, callback = callback } else m:run{ time = cfg.t_end } end
+  local cpu = os.clock() - cpu0   -- process CPU time of the run, all threads
 
   local tot = m:totals()
-  local res = { tag = tag, blocks = #M.blocks, steps = tot.steps, wall = tot.wall_seconds, cuts = tot.step_cuts,
+  local res = { tag = tag, blocks = rock_blocks, elements = elements, cpu = cpu, cg = tot.cg_iterations, steps = tot.steps, wall = tot.wall_seconds, cuts = tot.step_cuts,
                 oc = tot.open_close_iterations, mons = mons, line = line, size = cfg.size, load = cfg.load,
                 boundary = cfg.boundary }
   for name, mon in pairs(mons) do res[name] = ppv(mon) end
@@ -182,8 +225,9 @@ local function run_case(cfg)
   res.vy = { MP1 = mons.MP1:series("vy"), MP2 = mons.MP2:series("vy"), MP3 = mons.MP3:series("vy") }
   res.syy = { MP1 = mons.MP1:series("syy"), MP2 = mons.MP2:series("syy") }
   res.uy_MP3 = mons.MP3:series("uy")
-  print(string.format("  %d steps, %.1f s wall (%.1f ms/step), %d step cuts, %d open-close iterations",
-                      tot.steps, tot.wall_seconds, 1e3 * tot.wall_seconds / tot.steps, tot.step_cuts, tot.open_close_iterations))
+  print(string.format("  %d steps, %.1f s wall (%.1f ms/step), %.1f s CPU, %d step cuts, %d open-close iterations, " ..
+                      "%.1f CG iterations a step", tot.steps, tot.wall_seconds, 1e3 * tot.wall_seconds / tot.steps, cpu,
+                      tot.step_cuts, tot.open_close_iterations, tot.cg_iterations / tot.steps))
   print(string.format("  PPV (max |vy|): MP1 %.4f m/s at %.3f ms, MP2 %.4f, MP3 %.4f; MP3 final uy %.4g m",
                       res.MP1, 1e3 * res.t_peak_MP1, res.MP2, res.MP3, res.uy_MP3[#res.uy_MP3]))
 
@@ -226,12 +270,13 @@ local function run_case(cfg)
   f = assert(io.open(path, "a"))
   if not exists then
     f:write("tag,size,load,boundary,t_end,blocks,steps,wall_s,ms_per_step,step_cuts,open_close_iterations," ..
-            "ppv_mp1,t_peak_mp1,ppv_mp2,ppv_mp3,uy_mp3_final\n")
+            "ppv_mp1,t_peak_mp1,ppv_mp2,ppv_mp3,uy_mp3_final,elements,cg_iterations,cpu_s\n")
   end
-  f:write(string.format("%s,%g,%s,%s,%g,%d,%d,%.2f,%.2f,%d,%d,%.5g,%.5g,%.5g,%.5g,%.5g\n", tag, cfg.size, cfg.load,
-                        cfg.boundary, cfg.t_end, #M.blocks, tot.steps, tot.wall_seconds,
+  f:write(string.format("%s,%g,%s,%s,%g,%d,%d,%.2f,%.2f,%d,%d,%.5g,%.5g,%.5g,%.5g,%.5g,%d,%d,%.2f\n", tag, cfg.size,
+                        cfg.load, cfg.boundary, cfg.t_end, rock_blocks, tot.steps, tot.wall_seconds,
                         1e3 * tot.wall_seconds / tot.steps, tot.step_cuts, tot.open_close_iterations, res.MP1,
-                        res.t_peak_MP1, res.MP2, res.MP3, res.uy_MP3[#res.uy_MP3]))
+                        res.t_peak_MP1, res.MP2, res.MP3, res.uy_MP3[#res.uy_MP3], elements, tot.cg_iterations,
+                        res.cpu))
   docs_output.close(f, path)
 
   if cfg.check then
@@ -255,6 +300,16 @@ local function run_case(cfg)
                         cp, cbar, 1e3 * 6 / cp, 1e3 * tp, peak, ta and string.format("%.4f", 1e3 * ta) or "none"))
     print(string.format("  check: largest penetration %.4g m at %.4f ms; g2 bound %.4g m", max_pen, 1e3 * max_pen_t, bound))
     res.arrival, res.tp, res.max_pen, res.bound = ta, tp, max_pen, bound
+    -- (c) the wall moves as the load says: vy at the roof's middle at its
+    -- peak time (0.5 ms) against the DHI's 2.03 m/s (SHI: not prescribed)
+    local rt, rv = roof:times(), roof:series("vy")
+    for i = 1, #rt do
+      if rt[i] <= 0.5e-3 + 1e-12 then res.roof_vy = rv[i] end
+    end
+    print(string.format("  check: vy at the roof's middle at 0.5 ms %.4f m/s (DHI: 2.03 m/s)", res.roof_vy))
+    -- (d) a meshed MP1 reads the element under it, not its whole block
+    res.mp1_area = mons.MP1:block():area()
+    print(string.format("  check: MP1 reads a block of %.4g m^2 (element size %g m)", res.mp1_area, mesh))
   end
   m:close()
   return res
@@ -263,7 +318,8 @@ end
 local function cfg_with(over)
   local c = { size = P.size, load = P.load, boundary = P.boundary, t_end = P.t_end, frames = P.frames,
               line_step = P.line_step, check = check, contact_tolerance = P.contact_tolerance,
-              spacing = P.spacing, integrator = P.integrator, rho_inf = P.rho_inf }
+              spacing = P.spacing, integrator = P.integrator, rho_inf = P.rho_inf,
+              mesh = P.mesh, mesh_radius = P.mesh_radius, kn = P.kn }
   for k, v in pairs(over or {}) do c[k] = v end
   return c
 end
@@ -306,6 +362,12 @@ if figure == "" then
     if not ok_p then
       error(string.format("contact penetration %.4g m beyond the g2 bound %.4g m", r.max_pen, r.bound))
     end
+    if P.load == "dhi" and math.abs(r.roof_vy / 2.03 - 1) > 0.02 then
+      error(string.format("vy at the roof's middle at 0.5 ms %.4f m/s, not the DHI's 2.03 m/s (within 2 %%)", r.roof_vy))
+    end
+    if P.mesh > 0 and r.mp1_area > P.mesh * P.mesh then
+      error(string.format("MP1 reads a block of %.4g m^2, larger than an element (%g m)", r.mp1_area, P.mesh))
+    end
     print("check passed")
   end
 elseif figure == "14a" then
@@ -347,6 +409,55 @@ elseif figure == "15" then
               series = { { name = "DDA (SBC)", x = xs, y = ys, color = {30, 80, 200} }, { name = "Eq. 23: 1.8 SD^-2.5", x = xe, y = ye, color = {215, 50, 30} } },
               x_label = "R/Q^(1/3)", x_unit = "m/kg^(1/3)", y_label = "PPV", y_unit = "m/s" }
   end
+elseif figure == "mesh" then
+  -- Mesh convergence of the PPV at MP1 (2 m joints unless --set spacing):
+  -- one run per element size of --set meshes (coarse to fine, m), each
+  -- meshed within --set mesh_radius; the table below and
+  -- blast_mesh_convergence.csv; --set max_change=X: an error unless the PPV
+  -- of the last two sizes differs by less than X (a fraction).
+  local list = tostring(dda.param("meshes", "1,0.5,0.25"))
+  local max_change = dda.param("max_change", 0)
+  local meshes = {}
+  for v in list:gmatch("[^,]+") do
+    local x = tonumber(v)
+    if not x or x <= 0 then error("--set meshes=" .. list .. ": element sizes in m, > 0, comma separated") end
+    meshes[#meshes + 1] = x
+  end
+  if #meshes < 2 then error("--set meshes=" .. list .. ": give at least two element sizes") end
+  local rows, prev = {}, nil
+  local path = dda.output("blast_mesh_convergence.csv")
+  local f = assert(io.open(path, "w"))
+  f:write("mesh_m,mesh_radius_m,t_end_s,blocks,elements,steps,cpu_s,wall_s,cg_per_step,ppv_mp1,t_peak_mp1,change\n")
+  for _, h in ipairs(meshes) do
+    local r = run_case(cfg_with{ mesh = h })
+    if not (r.MP1 > 0.01) then   -- m/s: below it, no wave has reached MP1
+      error(string.format("--set figure=mesh: no wave at MP1 (PPV under 0.01 m/s) with %g m elements (the wave reaches MP1 after " ..
+                          "about 1.1 ms: give a longer --set t_end)", h))
+    end
+    local change = prev and (r.MP1 / prev - 1) or nil
+    rows[#rows + 1] = { h = h, r = r, change = change }
+    f:write(string.format("%g,%g,%g,%d,%d,%d,%.1f,%.1f,%.1f,%.5g,%.5g,%s\n", h, P.mesh_radius, P.t_end, r.blocks,
+                          r.elements, r.steps, r.cpu, r.wall, r.cg / r.steps, r.MP1, r.t_peak_MP1,
+                          change and string.format("%.5f", change) or ""))
+    f:flush()
+    prev = r.MP1
+  end
+  docs_output.close(f, path)
+  print(string.format("| element size (m) | elements | steps | CPU (s) | PPV at MP1 (m/s) | change |"))
+  print("|---|---:|---:|---:|---:|---:|")
+  for _, row in ipairs(rows) do
+    print(string.format("| %g | %d | %d | %.0f | %.4f | %s |", row.h, row.r.elements, row.r.steps, row.r.cpu,
+                        row.r.MP1, row.change and string.format("%+.1f %%", 100 * row.change) or "–"))
+  end
+  local last = rows[#rows].change
+  if max_change > 0 then
+    if math.abs(last) >= max_change then
+      error(string.format("PPV at MP1 changed by %+.2f %% from %g m to %g m elements (allowed under %.1f %%)",
+                          100 * last, meshes[#meshes - 1], meshes[#meshes], 100 * max_change))
+    end
+    print(string.format("PPV at MP1 %+.2f %% from %g m to %g m elements, the two finest given (under %.1f %%)",
+                        100 * last, meshes[#meshes - 1], meshes[#meshes], 100 * max_change))
+  end
 else
-  error("figure must be 14a, 14b or 15, got " .. tostring(figure))
+  error("figure must be 14a, 14b, 15 or mesh, got " .. tostring(figure))
 end

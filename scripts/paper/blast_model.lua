@@ -31,7 +31,26 @@ blast_model.charge_kg = 606               -- TNT of the field test (Eq. 23 uses 
 -- are merged into a neighbour; default none), joint_origin ({x, y}: a point
 -- both joint sets pass through; default the detonation centre {0, 0}. The
 -- paper does not say where its joints lie; with 2 m joints the PPV at MP1
--- depends on it, see blast_joint_offset.lua).
+-- depends on it, see blast_joint_offset.lua),
+-- mesh (m: blocks meshed into elements of about this size, docs/meshed_blocks.md;
+-- default 0, first-order blocks), mesh_radius (m: only the blocks whose
+-- centroid lies within this distance of the detonation centre are meshed, the
+-- rest stay first-order; default 0, every block), kn (Pa/m: the joints' own
+-- normal stiffness; default none, the penalty g0 per contact; blast.lua gives
+-- meshed models 2*g0/spacing, the paper's joint read as a stiffness per length).
+-- A block whose outline turns clockwise somewhere (the hole's corners cut four
+-- such blocks): the mesher takes convex blocks only.
+local function concave(b)
+  local v = b:vertices()
+  local n = #v
+  for k = 1, n do
+    local a, p, c = v[(k - 2) % n + 1], v[k], v[k % n + 1]
+    local cross = (p[1] - a[1]) * (c[2] - p[2]) - (p[2] - a[2]) * (c[1] - p[1])
+    if cross < -1e-12 then return true end
+  end
+  return false
+end
+
 function blast_model.build(opts)
   opts = opts or {}
   local size = opts.size or 100
@@ -40,17 +59,54 @@ function blast_model.build(opts)
   local controls = {}
   for k, v in pairs(blast_model.controls) do controls[k] = v end
   for k, v in pairs(opts.controls or {}) do controls[k] = v end
+  local mesh, mesh_radius = opts.mesh or 0, opts.mesh_radius or 0
+  -- Meshed: the centroids of the concave blocks, from the same geometry cut
+  -- first-order (no run). They stay first-order (a region each, painted over
+  -- the meshed rock) until the mesher takes concave outlines.
+  local concave_centroids, rock_blocks = {}, nil
+  if mesh > 0 then
+    local plain = {}
+    for k, v in pairs(opts) do plain[k] = v end
+    plain.mesh, plain.kn = 0, nil
+    local P = blast_model.build(plain)
+    for _, b in ipairs(P.blocks) do
+      if concave(b) then concave_centroids[#concave_centroids + 1] = { b:centroid() } end
+    end
+    rock_blocks = #P.blocks
+    P.m:close()
+  end
 
   local m = dda.model(controls)
-  local rock = m:rock(blast_model.rock)
-  local joint = m:joint(blast_model.joint)
+  local rock_props = {}
+  for k, v in pairs(blast_model.rock) do rock_props[k] = v end
+  if mesh > 0 and mesh_radius == 0 then rock_props.mesh_size = mesh end
+  local rock = m:rock(rock_props)
+  local joint_props = {}
+  for k, v in pairs(blast_model.joint) do joint_props[k] = v end
+  joint_props.kn = opts.kn
+  local joint = m:joint(joint_props)
   m:domain{ box = {-h, -h, h, h}, rock = rock, joint = joint }
   local chamber = m:hole{ box = blast_model.chamber, joint = joint }
+  if mesh > 0 and mesh_radius > 0 then
+    -- the same rock, meshed, in a disc about the detonation centre (a polygon
+    -- of 64 sides; a block is in it when its centroid is)
+    rock_props.mesh_size = mesh
+    local disc = {}
+    for k = 0, 63 do
+      local a = 2 * math.pi * k / 64
+      disc[#disc + 1] = { mesh_radius * math.cos(a), mesh_radius * math.sin(a) }
+    end
+    m:region{ polygon = disc, rock = m:rock(rock_props) }
+  end
+  for _, c in ipairs(concave_centroids) do
+    m:region{ box = { c[1] - 1e-3, c[2] - 1e-3, c[1] + 1e-3, c[2] + 1e-3 }, rock = m:rock(blast_model.rock) }
+  end
   local origin = opts.joint_origin or {0, 0}
   m:joint_set{ dip = 45, spacing = spacing, joint = joint, origin = origin }
   m:joint_set{ dip = 135, spacing = spacing, joint = joint, origin = origin }
   local blocks, info = m:generate(opts.min_area and { min_area = opts.min_area } or nil)
-  return { m = m, rock = rock, joint = joint, chamber = chamber, blocks = blocks, info = info,
+  return { m = m, rock = rock, mesh = mesh, mesh_radius = mesh_radius, first_order_concave = #concave_centroids,
+           rock_blocks = rock_blocks or #blocks, joint = joint, chamber = chamber, blocks = blocks, info = info,
            wall = chamber:edges(), outer = m:edges{ boundary = "domain" }, h = h, size = size }
 end
 
