@@ -132,6 +132,8 @@ local scheme_notes = {
     "at omega dt = 2.8 (its contact mode), which Shi's scheme damps and newmark keeps (with slivers merged the " ..
     "next triangle fails the same way at 6.69 ms, the energy residual turning positive). Model 5 (fixed) finishes with " ..
     "newmark at dt = 5e-7 s, or generalized_alpha with rho_inf = 0.5 (rho_inf = 0.8 stalls at 5.4 ms); " ..
+    "Model 6 has a 0.42 kg sliver there and stops under newmark at 4.02 ms, and at 4.66 ms with dt = 5e-7 s; " ..
+    "generalized_alpha with rho_inf = 0.5 finishes the whole figure; " ..
     "docs/time_integration.md ('Fig. 11 under newmark').",
   fig11 = "As Fig. 8: shares of two runs under one scheme; the scheme moves them little.",
 }
