@@ -60,8 +60,9 @@ enum class Integrator { Shi, Newmark, GeneralizedAlpha };
 //               translation is exact; the element's own turning and
 //               straining inertia ×4;
 //   Mixed:      the mean of the two (second moments × 2.5), which cancels the
-//               leading dispersion error of linear elements (the consistent
-//               mass's waves run faster than c, the lumped one's slower).
+//               leading dispersion error of linear elements in 1-D (the
+//               consistent mass's short waves run faster than c, the lumped
+//               one's slower). docs/meshed_blocks.md has what each does.
 enum class MeshMass { Consistent, Lumped, Mixed };
 
 // The factor on an element's second moments in its ∫TᵀT (above).
