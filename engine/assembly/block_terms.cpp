@@ -43,23 +43,19 @@ void assemble_block_terms(const Blocks& blocks, std::span<const Mat3> elastic, c
     if (strain_damping > 0)
       add_strain_damping(blocks, b, strain_damping * area * elastic[blocks.material[b]], scheme, k, f);
     // Inertia: the time scheme's terms with ∫TᵀT dA.
-    scheme.add_inertia(blocks.mass[b] / area, block_tt(blocks, b), blocks.scheme_state(b), k, f);
+    scheme.add_inertia(blocks.mass[b] / area, block_tt(blocks, b, scheme.mesh_mass), blocks.scheme_state(b), k, f);
     add_stress_and_body_force(blocks, b, gravity, f);
     terms.k[b] = Symmetric6(k);
     terms.f[b] = f;
   });
 }
 
-Mat6 block_tt(const Blocks& blocks, std::size_t b) {
-  return integrated_tt(blocks.area[b], blocks.sxx[b], blocks.syy[b], blocks.sxy[b]);
-}
-
-void start_time_scheme_state(Blocks& blocks, const Vec2& gravity, const BlockTerms& loads) {
+void start_time_scheme_state(Blocks& blocks, const Vec2& gravity, const BlockTerms& loads, MeshMass mesh_mass) {
   for (std::size_t b = 0; b < blocks.count(); ++b) {
     if (!std::isnan(blocks.acceleration[b][0])) continue;
     Vec6 f = loads.f[b];
     add_stress_and_body_force(blocks, b, gravity, f);
-    const Mat6 mass = (blocks.mass[b] / blocks.area[b]) * block_tt(blocks, b);
+    const Mat6 mass = (blocks.mass[b] / blocks.area[b]) * block_tt(blocks, b, mesh_mass);
     blocks.out_of_balance[b] = f;
     blocks.acceleration[b] = mass.ldlt().solve(f);
   }

@@ -26,14 +26,11 @@ struct BlockTerms {
 void assemble_block_terms(const Blocks& blocks, std::span<const Mat3> elastic, const Vec2& gravity,
                           double strain_damping, const TimeScheme& scheme, BlockTerms& terms);
 
-// ∫TᵀT dA of block b (its consistent mass over the density).
-Mat6 block_tt(const Blocks& blocks, std::size_t b);
-
 // The time scheme's state of blocks that have none yet (a NaN acceleration:
 // new blocks): the unbalanced force R₀ = the loads' forces `loads.f` (at the
 // step's start) + body force − initial stress, and a₀ = M⁻¹R₀. Contacts,
 // springs and dashpots are taken as unloaded, as they are when a model
-// starts (its blocks do not overlap).
-void start_time_scheme_state(Blocks& blocks, const Vec2& gravity, const BlockTerms& loads);
+// starts (its blocks do not overlap). M as the step's (mesh_mass).
+void start_time_scheme_state(Blocks& blocks, const Vec2& gravity, const BlockTerms& loads, MeshMass mesh_mass);
 
 }  // namespace dda

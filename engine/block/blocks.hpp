@@ -78,6 +78,11 @@ struct MaterialPoint {
   }
 };
 
+// ∫TᵀT dA of block b (its mass over the density, the time scheme's M/ρ):
+// exact for a first-order block, for an element of a meshed block as
+// `mesh_mass` says (MeshMass, block/time_scheme.hpp).
+Mat6 block_tt(const Blocks& blocks, std::size_t b, MeshMass mesh_mass);
+
 // Throws dda::Error, naming `what`, unless every edge exists (and there is one).
 void check_edges(const Blocks& blocks, const std::vector<EdgeRef>& edges, const std::string& what);
 

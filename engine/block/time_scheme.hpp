@@ -20,7 +20,8 @@
 //   F += M·[(1 − αm)/(βΔt)·v₀ + ((1 − αm)(½ − β)/β − αm)·a₀] / (1 − αf)
 //        + αf/(1 − αf)·R₀
 //
-// with M = ρ∫TᵀT dA, the block's consistent mass. The schemes:
+// with M = ρ∫TᵀT dA, the block's consistent mass (an element of a meshed
+// block: as mesh_mass says, MeshMass below). The schemes:
 //   shi:                β = ½, γ = 1, αm = αf = 0: v₁ = 2d/Δt − v₀, first
 //                       order, dissipative (exact for constant acceleration);
 //                       computed with Shi's own formulas, bit for bit;
@@ -45,6 +46,30 @@ namespace dda {
 
 enum class Integrator { Shi, Newmark, GeneralizedAlpha };
 
+// The mass of an element of a meshed block (block/mesh.hpp), the control
+// mesh_mass; first-order blocks always have their consistent mass. An
+// element's unknowns are its three nodes' displacements (D_e = A_e·u_e), so
+// a mass over the nodes, M_u, is M_D = A_e⁻ᵀ·M_u·A_e⁻¹ in DDA's
+// unknowns, A_e⁻¹ = [T(p1); T(p2); T(p3)]:
+//   Consistent: ρ∫TᵀT dA, the exact integral (the CST's consistent mass);
+//   Lumped:     ρ·(A/3)·Σ T(pᵢ)ᵀT(pᵢ), a third of the element's mass at each
+//               corner (the diagonal, row-sum mass over the nodes). About the
+//               element's centroid (ΣXᵢ = 0) that is ∫TᵀT with the second
+//               moments ∫X², ∫Y², ∫XY four times the exact ones (a triangle's
+//               ∫X² = (A/12)·ΣXᵢ²): the same mass and centre of mass, so
+//               translation is exact; the element's own turning and
+//               straining inertia ×4;
+//   Mixed:      the mean of the two (second moments × 2.5), which cancels the
+//               leading dispersion error of linear elements in 1-D (the
+//               consistent mass's short waves run faster than c, the lumped
+//               one's slower). docs/meshed_blocks.md has what each does.
+enum class MeshMass { Consistent, Lumped, Mixed };
+
+// The factor on an element's second moments in its ∫TᵀT (above).
+inline double element_moment_factor(MeshMass m) {
+  return m == MeshMass::Lumped ? 4.0 : m == MeshMass::Mixed ? 2.5 : 1.0;
+}
+
 // One block's state at the start of the step (before gg).
 struct BlockState {
   const Vec6& velocity;
@@ -62,6 +87,7 @@ struct TimeScheme {
   double gg = 1;
   Integrator integrator = Integrator::Shi;
   double beta = 0.5, gamma = 1, alpha_m = 0, alpha_f = 0;
+  MeshMass mesh_mass = MeshMass::Consistent;  // the elements' mass (block_tt, blocks.hpp)
 
   // The scheme's parameters; rho_inf only for generalized-α.
   void choose(Integrator kind, double rho_inf) {

@@ -24,6 +24,7 @@ constexpr ControlRange kZeroEveryCoreOrPositive{0, kInf, false, false, "must be 
 
 constexpr const char* kPlaneNames[] = {"stress", "strain"};                            // PlaneMode order
 constexpr const char* kIntegratorNames[] = {"shi", "newmark", "generalized_alpha"};    // Integrator order
+constexpr const char* kMeshMassNames[] = {"consistent", "lumped", "mixed"};            // MeshMass order
 constexpr const char* kContactLawNames[] = {"holding", "shi"};                         // ContactLaw order
 constexpr const char* kPreconditionerNames[] = {"auto", "block_jacobi", "multigrid"};  // Preconditioning order
 constexpr const char* kSolverNames[] = {"auto", "pcg", "cholmod"};                     // SolverKind order
@@ -127,6 +128,13 @@ const ControlSpec kControls[] = {
         " on the outline (`docs/meshed_blocks.md`); convex blocks on a structured grid, concave ones by CGAL. 0: "
         "first-order blocks",
         "0 (off)"),
+    choice(
+        "mesh_mass", kMeshMassNames, [](const Controls& c) { return static_cast<int>(c.mesh_mass); },
+        [](Controls& c, int i) { c.mesh_mass = static_cast<MeshMass>(i); },
+        "the mass of meshed blocks' elements (`docs/meshed_blocks.md`): `\"consistent\"` (ρ∫TᵀT, exact: "
+        "short waves run faster than c, a precursor ahead of a steep front), `\"lumped\"` (a third of an "
+        "element's mass at each corner: short waves lag) or `\"mixed\"` (their mean). Translation and the "
+        "mass are exact under each; first-order blocks keep their consistent mass"),
     number(
         "fixed_point_factor", [](Controls& c) -> double& { return c.fixed_point_factor; }, kPositive,
         "fixed-point spring = factor × g0"),

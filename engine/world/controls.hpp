@@ -64,6 +64,9 @@ struct Controls {
   // Element size (m) of the meshes of blocks added from now on whose rock
   // material gives none; 0: first-order blocks (block/mesh.hpp).
   double mesh_size = 0;
+  // The mass of the meshes' elements (block/time_scheme.hpp).
+  MeshMass mesh_mass = MeshMass::Consistent;
+
   double fixed_point_factor = 100;  // fixed-point spring = factor × g0
   Vec2 gravity = Vec2::Zero();      // m/s²
   double cut_factor = 1.0 / 3.0;    // Δt multiplier when a step is redone

@@ -25,7 +25,7 @@ BlockEnergy block_energy(const Blocks& blocks, const VecX& d, const TimeScheme& 
   for (std::size_t b = 0; b < blocks.count(); ++b) {
     const Vec6 db = d.segment<6>(6 * b);
     const BlockState s = blocks.scheme_state(static_cast<BlockId>(b));
-    const Mat6 mass = (blocks.mass[b] / blocks.area[b]) * block_tt(blocks, b);
+    const Mat6 mass = (blocks.mass[b] / blocks.area[b]) * block_tt(blocks, b, scheme.mesh_mass);
     const Vec6 v1 = scheme.end_velocity(db, s);
     e.kinetic_before += 0.5 * s.velocity.dot(mass * s.velocity);
     e.kinetic_after += 0.5 * v1.dot(mass * v1);

@@ -171,6 +171,7 @@ void Stepper::derive_material_constants(const WorldState& w) {
   contact_law_ = {g0_, c.shear_ratio, c.contact_tolerance * w.half_height, w.joints, tan_friction_, c.contact_law};
   scheme_.gg = c.gg;
   scheme_.choose(c.integrator, c.rho_inf);
+  scheme_.mesh_mass = c.mesh_mass;
 }
 
 // The second-order schemes' state of blocks that have none yet (new blocks):
@@ -183,7 +184,7 @@ void Stepper::start_time_scheme(WorldState& w) {
   BlockTerms loads;
   loads.f.assign(blocks.count(), Vec6::Zero());
   w.loads.add_terms(w.time, blocks, loads);
-  start_time_scheme_state(blocks, w.controls.gravity, loads);
+  start_time_scheme_state(blocks, w.controls.gravity, loads, scheme_.mesh_mass);
 }
 
 // The linear solver picks its backend, the step's solve regime follows from

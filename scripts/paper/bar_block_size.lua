@@ -16,11 +16,13 @@
 --          the largest tensile sigma_xx before the compressive peak, in % of the
 --          5 MPa amplitude (the exact bar has none).
 --          mesh=h: the blocks meshed at element size h (docs/meshed_blocks.md);
---          nu: the rock's Poisson's ratio (0.25); penalty=true: the joints
+--          mesh_mass: the elements' mass (consistent, lumped or mixed: the
+--          control mesh_mass); nu: the rock's Poisson's ratio (0.25); penalty=true: the joints
 --          without their own k_n (each contact the penalty g0).
 -- Run:     build/dda run scripts/paper/bar_block_size.lua [--set sizes=0.2,0.1,0.05]
 --                   [--set g0=1] [--set dt=2e-6] [--set check=true] [--set mesh=0.05]
 --                   [--set nu=0.25] [--set penalty=true] [--set max_precursor=2]
+--                   [--set mesh_mass=lumped]
 -- Writes:  out/bar_block_size.csv (size, blocks, comp, tens, exact comp, exact tens,
 --          precursor %); prints the table. check=true: error unless the precursor
 --          falls by at least half with each halving of the blocks, and at the
@@ -41,6 +43,7 @@ local check = dda.param("check", false)
 -- mesh: the blocks meshed at this element size (m; docs/meshed_blocks.md), nil:
 -- first-order blocks. The joints keep their own k_n whatever the mesh.
 local mesh = dda.param("mesh", nil)
+local mesh_mass = dda.param("mesh_mass", "consistent")
 local nu = dda.param("nu", bars.rock.nu)
 -- penalty=true: the joints without their own k_n, each contact's springs the
 -- penalty g0 (the paper's Eq. 4 holds for first-order blocks only: on a meshed
@@ -57,7 +60,7 @@ local ex_comp, ex_tens = wave.incident(ex, "comp"), wave.incident(ex, "tens")
 
 local function run(size)
   local m = dda.model{ plane = "stress", g0 = g0 * E, g1 = dt, g2 = 0.005, gg = 1, integrator = integrator,
-                       contact_law = "shi" }
+                       contact_law = "shi", mesh_mass = mesh_mass }
   local rock = m:rock{ density = bars.rock.density, E = bars.rock.E, nu = nu, mesh_size = mesh }
   local joint = m:joint{ friction = 40, cohesion = 8e6, tension = 8e6,
                         kn = (not penalty) and 2 * g0 * E / bars.spacing or nil }
@@ -91,7 +94,8 @@ end
 local rows, results = {}, {}
 print(string.format("Model 1 joints (g0 = %gE%s), %s blocks, nu = %g, %s at dt = %g s, sigma_xx at x = 10.1 m (MPa); "
                     .. "exact %.4f / %.4f", g0, penalty and ", the penalty per contact" or ", k_n = 2 g0 / 0.2 m",
-                    mesh and string.format("meshed at %g m", mesh) or "first-order", nu, integrator, dt,
+                    mesh and string.format("meshed at %g m (%s mass)", mesh, mesh_mass) or "first-order", nu,
+                    integrator, dt,
                     ex_comp / 1e6, ex_tens / 1e6))
 print(string.format("%8s %7s %10s %8s %10s %8s %12s", "size (m)", "blocks", "comp", "vs exact", "tens", "vs exact",
                     "precursor %"))
