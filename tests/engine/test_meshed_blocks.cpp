@@ -397,21 +397,31 @@ TEST(MeshedBlocks, EveryMeshMassKeepsTheMassAndTranslationExact) {
   }
 }
 
+// A static analysis (gg = 0, Δt = 1 ms) under gravity, for the resting tests.
+World static_world_under_gravity() {
+  Controls c;
+  c.gravity = {0, -9.81};
+  c.gg = 0;
+  c.g1 = 1e-3;
+  return World(c);
+}
+
+// Granite whose blocks are meshed at `size`; returns the material's index.
+int add_meshed_granite(World& w, double size) {
+  RockMaterial meshed = test::granite();
+  meshed.mesh_size = size;
+  return w.add_rock_material(meshed);
+}
+
 // A meshed block resting on a fixed first-order base (static analysis,
 // gg = 0), a square (structured mesh) and an L (CGAL's mesh): contacts only
 // on the outline nodes, their normal forces carry the block's weight
 // (reference: m·g, within 1e-6).
 TEST(MeshedBlocks, MeshedBlockRestsOnItsOutlineContacts) {
   for (const auto& outline : {test::rectangle(0, 0, 1, 1), kSmallL}) {
-    Controls c;
-    c.gravity = {0, -9.81};
-    c.gg = 0;
-    c.g1 = 1e-3;
-    World w(c);
+    World w = static_world_under_gravity();
     const int base_rock = w.add_rock_material(test::granite());
-    RockMaterial meshed = test::granite();
-    meshed.mesh_size = 0.25;
-    const int r = w.add_rock_material(meshed);
+    const int r = add_meshed_granite(w, 0.25);
     test::add_fixed_base(w, test::rectangle(-1, -1, 3, 1), base_rock);
     const BlockId first = w.add_block(outline, r);
     for (int i = 0; i < 30; ++i) w.step();
@@ -441,15 +451,9 @@ TEST(MeshedBlocks, MeshedBlockRestsOnItsOutlineContacts) {
 // L's mesh), m·g within 1e-6; the square touches step and wall, and settles
 // by the contacts' penetration only (under 1e-5 m).
 TEST(MeshedBlocks, BlockInTheInnerCornerOfAMeshedLRestsOnIt) {
-  Controls c;
-  c.gravity = {0, -9.81};
-  c.gg = 0;
-  c.g1 = 1e-3;
-  World w(c);
+  World w = static_world_under_gravity();
   const int rock = w.add_rock_material(test::granite());
-  RockMaterial meshed = test::granite();
-  meshed.mesh_size = 0.25;
-  const int r = w.add_rock_material(meshed);
+  const int r = add_meshed_granite(w, 0.25);
   const BlockId base = test::add_fixed_base(w, test::rectangle(-1, -1, 3, 1), rock);
   const BlockId first = w.add_block(kSmallL, r);
   const BlockId square = w.add_block(test::rectangle(0.5, 0.5, 0.3, 0.3), rock);
