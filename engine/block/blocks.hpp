@@ -59,7 +59,7 @@ struct Blocks {
   std::span<const Vec2> outline(BlockId b) const {
     return std::span<const Vec2>(vertices).subspan(vertex_start[b], vertex_count(b));
   }
-  BlockPolygons polygons() const { return {vertex_start, vertices}; }
+  BlockPolygons polygons() const { return {vertex_start, vertices, inner_edge}; }
   bool has_meshes() const { return !mesh.empty(); }
   bool is_element(BlockId b) const { return !mesh.empty() && mesh[b] >= 0; }
   // Block b's time-scheme state at the start of a step.
