@@ -209,3 +209,32 @@ TEST(TimeIntegration, TheDefaultSchemeHoldsABlockOnAnInclineItsFrictionHolds) {
   EXPECT_LT(std::abs(slip_of(Controls{}.integrator)), 1e-4);
   EXPECT_GT(slip_of(Integrator::Newmark), 1e-2) << "the reason for the default has gone: measure again";
 }
+
+TEST(TimeIntegration, ADashpotDoesNotDampNewmarksUnresolvedMode) {
+  // The cure for Newmark's ringing contact springs at quasi-static steps
+  // (docs/time_integration.md, "A contact dashpot does not cure Newmark's
+  // ringing"): the oscillator at ωΔt = 340 (the incline's contact mode at
+  // Δt = 1e-2 s) with a critical dashpot, c = 2·m·ω (ζ = 1: the exact motion
+  // is gone within a step, e^(−ωΔt)), made by a viscous boundary on the
+  // block's right edge whose medium has ρ·C_P = c. Reference: the spectral
+  // radius of the average-acceleration rule on m·ẍ + c·ẋ + k·x = 0 at ωΔt =
+  // 340, ζ = 1, is 0.993 a step (it maps every mode to −1 as ωΔt → ∞,
+  // whatever the damping): after 40 steps at least half the speed is left
+  // (measured 0.86; 0.993⁴⁰ = 0.75). Generalized-α at ρ∞ = 0.5 without any
+  // dashpot damps it by 0.52 a step: under 1e-3 of the speed after 40 steps
+  // (0.52⁴⁰ = 4e-12).
+  const double omega_dt = 340, speed = 1;
+  Oscillator newmark = oscillator(Integrator::Newmark, omega_dt, speed);
+  const double m = newmark.w.block_mass(newmark.b), c = 2 * m * newmark.omega, rho = 2600;
+  const double modulus = c * c / rho;  // ρ·C_P = √(M·ρ) = c; M = E(1 − ν)/((1 + ν)(1 − 2ν)) = 1.2·E at ν = ¼
+  const int medium = newmark.w.add_rock_material(RockMaterial{rho, modulus / 1.2, 0.25});
+  newmark.w.add_viscous_boundary({{newmark.b, 1}}, medium);
+  Oscillator alpha = oscillator(Integrator::GeneralizedAlpha, omega_dt, speed);
+  alpha.w.controls().rho_inf = 0.5;
+  for (int n = 0; n < 40; ++n) {
+    ASSERT_EQ(newmark.w.step().step_cuts, 0);
+    ASSERT_EQ(alpha.w.step().step_cuts, 0);
+  }
+  EXPECT_GT(std::abs(newmark.w.block_velocity(newmark.b)[0]), 0.5 * speed);
+  EXPECT_LT(std::abs(alpha.w.block_velocity(alpha.b)[0]), 1e-3 * speed);
+}
