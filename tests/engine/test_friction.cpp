@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <string>
 
 #include "../scenes.hpp"
 
@@ -520,14 +521,17 @@ constexpr double kFrictionLag = 3e-3;  // s
 // once. Measured: within 4e-7 at Δt = 1e-2 to 1e-5 s (without the lag, at
 // 1e-5 s contacts open and 25.2° on 25° slides 3.6 % fast).
 void expect_lagged_slides_at_the_closed_form_rate(double dt, bool settled_first,
-                                                  std::initializer_list<std::pair<double, double>> angles) {
+                                                  std::initializer_list<std::pair<double, double>> angles,
+                                                  Integrator integrator = Integrator::Shi) {
   for (const auto& [alpha, phi] : angles) {
     Incline s(alpha, phi, dt);
     s.w.controls().friction_lag = kFrictionLag;
+    s.w.controls().integrator = integrator;
     if (settled_first) settle_then_run_at(s.w, dt);
     const double expected = closed_form_acceleration(alpha, phi);
     const Slide r = slide_from(s, 0.3);
-    const char* start = settled_first ? ", static start" : ", gravity on at once";
+    const std::string start = std::string(settled_first ? ", static start" : ", gravity on at once") +
+                              (integrator == Integrator::Shi ? ", Shi" : ", Newmark");
     EXPECT_NEAR(r.acceleration, expected, 1e-3 * expected) << alpha << "° on " << phi << "°, Δt " << dt << start;
     EXPECT_FALSE(r.opened) << alpha << "° on " << phi << "°, Δt " << dt << start;
   }
@@ -540,6 +544,17 @@ TEST(Friction, LaggedFrictionSlidesAtTheClosedFormRateAtEveryStepSize) {
   for (const double dt : {1e-2, 1e-3, 1e-4, 1e-5})
     for (const bool settled_first : {true, false})
       expect_lagged_slides_at_the_closed_form_rate(dt, settled_first, kSlidingAngles);
+}
+
+// Under Newmark's integrator (no numerical damping) from a static start:
+// the same bound, measured within 4.4e-4 (60° on 45° at 1e-3 s; the others
+// within 5e-7). With gravity switched on at once the contact springs'
+// ringing, which Newmark's rule does not damp, spoils the slide at every Δt
+// (3.4 % off at 1e-2 s; contacts opening from 1e-3 s down: docs/contacts.md),
+// not the friction's to cure.
+TEST(Friction, LaggedFrictionSlidesAtTheClosedFormRateUnderNewmarkFromAStaticStart) {
+  for (const double dt : {1e-2, 1e-3, 1e-4, 1e-5})
+    expect_lagged_slides_at_the_closed_form_rate(dt, true, kSlidingAngles, Integrator::Newmark);
 }
 
 // The same at Δt = 1e-6 s (300,000 steps each: label `long`); measured
