@@ -123,7 +123,8 @@ const ControlSpec kControls[] = {
         "its first N. The fast swings of N that couple a sliding block's strain modes into chatter (Δt ≤ 1e-5 s) "
         "no longer reach its friction: with 3e-3, under `contact_law = \"holding\"` and Shi's integrator, a 1 m "
         "granite block slides at the closed-form rate with its contacts closed at Δt = 1e-2 to 1e-6 s, φ up to "
-        "45°, and waves through intact joints are untouched. Not yet the default: a block landing or loaded at "
+        "45° (with gravity switched on at once, up to 25° below 1e-5 s), and waves through intact joints are "
+        "untouched. Not yet the default: a block landing or loaded at "
         "once slides further while its friction builds up (`docs/contacts.md`)",
         "0 (off)"),
     number(
