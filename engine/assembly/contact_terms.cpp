@@ -62,8 +62,9 @@ void assemble_contact_rows(std::span<const Contact> contacts, const ContactLinea
             f -= springs.ks * open_close.iterate[i].s0 * es_self;
           } else {
             // Sliding: friction N·tanφ against the sliding direction, with N
-            // from the previous iteration.
-            const double friction = std::max(0.0, open_close.iterate[i].normal_force) * p.tan_friction[c.joint];
+            // from the previous iteration (lagged with friction_lag).
+            const ContactIterate& it = open_close.iterate[i];
+            const double friction = friction_normal(it, it.normal_force) * p.tan_friction[c.joint];
             f -= c.slide_sign * friction * es_self;
           }
         }

@@ -39,6 +39,13 @@ struct Contact {
   bool ref_valid = false;
   // Sign of the last sliding direction along the edge (for friction).
   std::int8_t slide_sign = 0;
+  // Friction that lags the normal force (control friction_lag): the normal
+  // force N_f the contact's friction strength acted with at the end of the
+  // last accepted step; N_f follows N as dN_f/dt = (N − N_f)/t_r. Valid
+  // (friction_lagged) while the contact has stayed closed since an accepted
+  // step; a contact that closes starts from its first N (open_close.hpp).
+  double friction_normal = 0;
+  bool friction_lagged = false;
 
   // Results of the last converged solve (compression positive), for callers.
   double normal_force = 0;  // N (per unit thickness)
@@ -49,7 +56,7 @@ struct Contact {
   template <class Archive>
   void fields(Archive& ar) {
     ar(vblock, eblock, vertex, edge, joint, state, intact, length, scale, ref_param, ref_valid, slide_sign,
-       normal_force, shear_force, penetration);
+       friction_normal, friction_lagged, normal_force, shear_force, penetration);
   }
 };
 
@@ -59,14 +66,15 @@ struct Contact {
 // The shear force and penetration are left out: every solve recomputes them
 // before anyone reads them.
 struct ContactIterationState {
-  double ref_param, normal_force;
+  double ref_param, normal_force, friction_normal;
   ContactState state;
-  bool intact, ref_valid;
+  bool intact, ref_valid, friction_lagged;
   std::int8_t slide_sign;
 };
 
 inline ContactIterationState iteration_state(const Contact& c) {
-  return {c.ref_param, c.normal_force, c.state, c.intact, c.ref_valid, c.slide_sign};
+  return {c.ref_param, c.normal_force, c.friction_normal, c.state,
+          c.intact,    c.ref_valid,    c.friction_lagged, c.slide_sign};
 }
 
 inline void set_iteration_state(Contact& c, const ContactIterationState& s) {
@@ -76,6 +84,8 @@ inline void set_iteration_state(Contact& c, const ContactIterationState& s) {
   c.intact = s.intact;
   c.ref_valid = s.ref_valid;
   c.slide_sign = s.slide_sign;
+  c.friction_normal = s.friction_normal;
+  c.friction_lagged = s.friction_lagged;
 }
 
 inline bool same_identity(const Contact& a, const Contact& b) {

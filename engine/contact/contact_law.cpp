@@ -102,7 +102,7 @@ bool update_contact_state(Contact& c, ContactIterate& it, const JointMaterial& j
         if (!holding) it.s0 = 0;
         break;
       case ContactState::Locked:
-        if (std::abs(shear) > std::max(0.0, normal) * tan_phi + k.ks * m.shear_slack) slide_towards(ds);
+        if (std::abs(shear) > friction_normal(it, normal) * tan_phi + k.ks * m.shear_slack) slide_towards(ds);
         break;
       case ContactState::Sliding:
         // Lock again once the shear spring, put back, would carry less than
@@ -112,8 +112,9 @@ bool update_contact_state(Contact& c, ContactIterate& it, const JointMaterial& j
         // sliding one whose motion, measured from the step start, reverses
         // while its spring unloads. Shi's law (or no shear spring): once the
         // motion reverses, re-locked unloaded.
-        if (holding && k.ks > 0 ? k.ks * ds * c.slide_sign < std::max(0.0, normal) * tan_phi - k.ks * m.shear_slack
-                                : m.ds_step * c.slide_sign < -m.shear_slack) {
+        if (holding && k.ks > 0
+                ? k.ks * ds * c.slide_sign < friction_normal(it, normal) * tan_phi - k.ks * m.shear_slack
+                : m.ds_step * c.slide_sign < -m.shear_slack) {
           c.state = ContactState::Locked;
           if (!holding) it.s0 = 0;
         }

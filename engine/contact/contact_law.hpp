@@ -61,7 +61,25 @@ struct ContactIterate {
   // not the friction band of a share of the step's translations, which for a
   // block landing fast is many times the force that stops it (open_close.cpp).
   bool closed_at_start = false;
+  // Friction that lags the normal force (control friction_lag): the lagged
+  // normal force at the step start, N_f0, and the step's weight of the new
+  // N, w = 1 − exp(−Δt/t_r); w = 1 (no lag) without friction_lag and for a
+  // contact with no lagged force yet (friction_normal below).
+  double lag_start = 0;
+  double lag_weight = 1;
 };
+
+// The normal force a contact's friction strength acts with when its normal
+// force at the step's end is n (compression positive): max(0, n), or with
+// friction_lag the lagged N_f = N_f0 + w·(max(0, n) − N_f0), the exact step
+// of dN_f/dt = (N − N_f)/t_r with N held at its end-of-step value (the
+// simplified Prakash–Clifton law, Ranjith and Rice 2001): stable for every
+// Δt/t_r, today's max(0, n) once Δt ≫ t_r (w = 1), and N itself in steady
+// sliding. Every friction decision and force takes its N from here.
+inline double friction_normal(const ContactIterate& it, double n) {
+  const double now = n > 0 ? n : 0.0;
+  return it.lag_weight == 1 ? now : it.lag_start + it.lag_weight * (now - it.lag_start);
+}
 
 // A contact's springs: normal on a closed contact, shear on a locked one.
 struct ContactSprings {

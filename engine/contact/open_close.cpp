@@ -20,14 +20,21 @@ void restore_contact_states(std::span<Contact> contacts, const OpenCloseState& s
       contacts.size(), [&](std::size_t i) { set_iteration_state(contacts[i], s.saved[i]); }, 1024);
 }
 
-void start_open_close(std::span<const Contact> contacts, const ContactLinearisation& lin, OpenCloseState& s) {
+void start_open_close(std::span<const Contact> contacts, const ContactLinearisation& lin, const ContactParameters& p,
+                      double dt, OpenCloseState& s) {
   s.iterate.resize(contacts.size());
   s.friction_passes = 0;
+  const double lag_weight = p.friction_lag > 0 ? -std::expm1(-dt / p.friction_lag) : 1.0;
   parallel_for_each(
       contacts.size(),
       [&](std::size_t i) {
-        s.iterate[i] = {lin.offsets[i].s0, contacts[i].normal_force, lin.offsets[i].s0,
-                        contacts[i].state != ContactState::Open};
+        const Contact& c = contacts[i];
+        const bool closed = c.state != ContactState::Open;
+        s.iterate[i] = {lin.offsets[i].s0, c.normal_force, lin.offsets[i].s0, closed};
+        if (closed && c.friction_lagged) {
+          s.iterate[i].lag_start = c.friction_normal;
+          s.iterate[i].lag_weight = lag_weight;
+        }
       },
       1024);
 }
@@ -167,7 +174,7 @@ bool check_contact_states(std::span<Contact> contacts, const ContactLinearisatio
                                            s.iterate[i].closed_at_start);
     const double tan_phi = p.tan_friction[c.joint];
     const ContactState before = c.state;
-    const double friction_normal = s.iterate[i].normal_force;  // the N this solve's friction used
+    const double solved_with = s.iterate[i].normal_force;  // the N this solve's friction used
     bool changed = update_contact_state(c, s.iterate[i], p.joints[c.joint], tan_phi, springs, m, p.law);
     // Friction consistent with the normal force of the accepted solution: a
     // contact that slid through the solve with the N of the solve before (or
@@ -177,7 +184,7 @@ bool check_contact_states(std::span<Contact> contacts, const ContactLinearisatio
     if (p.law == ContactLaw::Holding && !changed && before == ContactState::Sliding &&
         c.state == ContactState::Sliding) {
       const double n = s.iterate[i].normal_force;
-      friction_moved = std::abs(n - friction_normal) >
+      friction_moved = std::abs(n - solved_with) >
                        kConsistency * std::abs(n) + springs.kn * contact_slack(0, 0, lin.offsets[i].edge_length);
     }
     s.changed[i] = changed || friction_moved;
@@ -187,9 +194,10 @@ bool check_contact_states(std::span<Contact> contacts, const ContactLinearisatio
     // against the spring's: its results, state hashes included, are the
     // earlier ones bit for bit.)
     const double friction_sign = p.law == ContactLaw::Shi ? -c.slide_sign : c.slide_sign;
-    c.shear_force = c.state == ContactState::Locked    ? springs.ks * m.ds
-                    : c.state == ContactState::Sliding ? friction_sign * std::max(0.0, c.normal_force) * tan_phi
-                                                       : 0.0;
+    c.shear_force = c.state == ContactState::Locked ? springs.ks * m.ds
+                    : c.state == ContactState::Sliding
+                        ? friction_sign * friction_normal(s.iterate[i], c.normal_force) * tan_phi
+                        : 0.0;
     if (friction_moved) any_friction.store(true, std::memory_order_relaxed);
     return changed ? 2 : friction_moved ? 1 : 0;
   });
@@ -267,6 +275,18 @@ void keep_shear_references(std::span<Contact> contacts, const ContactLinearisati
         c.ref_valid = true;
       },
       256);
+}
+
+void keep_lagged_friction(std::span<Contact> contacts, const OpenCloseState& s, const ContactParameters& p) {
+  const bool lag = p.friction_lag > 0;
+  parallel_for_each(
+      contacts.size(),
+      [&](std::size_t i) {
+        Contact& c = contacts[i];
+        c.friction_lagged = lag && c.state != ContactState::Open;
+        c.friction_normal = c.friction_lagged ? friction_normal(s.iterate[i], c.normal_force) : 0.0;
+      },
+      1024);
 }
 
 }  // namespace dda

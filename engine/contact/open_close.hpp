@@ -37,6 +37,9 @@ struct ContactParameters {
     return {g0, shear_ratio * g0};
   }
   ContactLaw law = ContactLaw::Holding;  // update_contact_state
+  // Friction that lags the normal force by t_r = friction_lag (s; 0: none,
+  // the control of that name; docs/contacts.md).
+  double friction_lag = 0;
 };
 
 // A contact's springs (ContactParameters::springs), scaled by its overlap scale.
@@ -55,9 +58,12 @@ struct OpenCloseState {
 void save_contact_states(std::span<const Contact> contacts, OpenCloseState& s);
 void restore_contact_states(std::span<Contact> contacts, const OpenCloseState& s);
 
-// An attempt's starting point: each contact's shear offset and the normal
-// force of the last accepted solve (Shi's friction lag).
-void start_open_close(std::span<const Contact> contacts, const ContactLinearisation& lin, OpenCloseState& s);
+// An attempt's starting point: each contact's shear offset, the normal
+// force of the last accepted solve (Shi's friction lag) and, with
+// friction_lag, its lagged friction normal force and the weight of the new
+// N in it over this attempt's dt, 1 − exp(−dt/t_r).
+void start_open_close(std::span<const Contact> contacts, const ContactLinearisation& lin, const ContactParameters& p,
+                      double dt, OpenCloseState& s);
 
 // The open-close iteration's first guess from a warm start d (see the .cpp
 // for the transitions taken and those not).
@@ -77,5 +83,16 @@ double deepest_penetration(std::span<const Contact> contacts);
 // with (locked: its spring force; sliding: its friction); open ones drop it.
 void keep_shear_references(std::span<Contact> contacts, const ContactLinearisation& lin, const OpenCloseState& s,
                            const ContactParameters& p);
+
+// The accepted step, with friction_lag: a closed contact keeps the lagged
+// normal force its friction strength ended the step with, N_f (locked or
+// sliding: the strength is a state of the contact that follows N, the
+// Prakash–Clifton law; the force of a locked contact is its spring's, not
+// touched by the lag); an open one drops it. A contact that closes (a new
+// one, or one transferred to another edge) starts from its first N: a
+// strength it never had would let it hold where it must slide, and one from
+// zero would let a landing block slide frictionless for t_r. Without
+// friction_lag every contact holds none.
+void keep_lagged_friction(std::span<Contact> contacts, const OpenCloseState& s, const ContactParameters& p);
 
 }  // namespace dda

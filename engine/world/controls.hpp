@@ -60,6 +60,11 @@ struct Controls {
   // default). It keeps a block sliding at small Δt from chattering
   // (docs/contacts.md).
   double strain_damping = 0;
+  // Friction that lags the normal force: t_r in seconds, the friction's
+  // normal force N_f following N as dN_f/dt = (N − N_f)/t_r; 0: none (the
+  // default). It keeps a block sliding at small Δt from chattering without
+  // damping waves (docs/contacts.md).
+  double friction_lag = 0;
   double contact_range = 0;  // m; 0 → automatic (contact/contact_detection.hpp)
   // Element size (m) of the meshes of blocks added from now on whose rock
   // material gives none; 0: first-order blocks (block/mesh.hpp).

@@ -169,6 +169,7 @@ void Stepper::derive_material_constants(const WorldState& w) {
   tan_friction_.resize(w.joints.size());
   for (std::size_t j = 0; j < w.joints.size(); ++j) tan_friction_[j] = std::tan(deg_to_rad(w.joints[j].friction_deg));
   contact_law_ = {g0_, c.shear_ratio, c.contact_tolerance * w.half_height, w.joints, tan_friction_, c.contact_law};
+  contact_law_.friction_lag = c.friction_lag;
   scheme_.gg = c.gg;
   scheme_.choose(c.integrator, c.rho_inf);
   scheme_.mesh_mass = c.mesh_mass;
@@ -247,7 +248,7 @@ void Stepper::assemble_own_terms(WorldState& w) {
 // The warm start and the open-close iteration's first guess (solve_regime.hpp).
 void Stepper::predict(WorldState& w) {
   StageTimer timer(stats_.profile, Stage::PredictStates);
-  start_open_close(w.contacts, linearisation_, open_close_);
+  start_open_close(w.contacts, linearisation_, contact_law_, w.dt, open_close_);
   const Blocks& blocks = w.blocks;
   // The Δt of the step the warm start extrapolates from: the last accepted
   // one's (after a cut or a growth of Δt it differs; Shi's law keeps the
@@ -412,6 +413,7 @@ void Stepper::update(WorldState& w) {
   move_blocks(w.blocks, solution_, vertex_motion_, elastic_, scheme_);
   detection_.add_rotations(solution_);
   keep_shear_references(w.contacts, linearisation_, open_close_, contact_law_);
+  keep_lagged_friction(w.contacts, open_close_, contact_law_);
   w.time += w.dt;
   ++w.steps;
 }

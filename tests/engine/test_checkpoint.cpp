@@ -123,6 +123,27 @@ TEST(Checkpoint, SlidingSlopeContinuesBitForBit) {
   expect_restart_exact(slope, 80, 80);
 }
 
+// Friction that lags the normal force (friction_lag) carries each closed
+// contact's lagged normal force from step to step: the sliding block
+// checkpointed while that force still trails N (gravity on at once, 1 ms
+// in) continues bit for bit.
+TEST(Checkpoint, LaggedFrictionContinuesBitForBit) {
+  const auto scene = [] {
+    World w = slope();
+    w.controls().contact_law = ContactLaw::Holding;
+    w.controls().friction_lag = 3e-3;
+    w.controls().g1 = 1e-4;
+    return w;
+  };
+  World w = scene();
+  for (int i = 0; i < 10; ++i) w.step();
+  double trailing = 0;
+  for (const Contact& c : w.contacts())
+    if (c.friction_lagged) trailing = std::max(trailing, std::abs(c.friction_normal - c.normal_force));
+  ASSERT_GT(trailing, 100) << "the lagged force does not trail N: the test would not carry it over";
+  expect_restart_exact(scene, 10, 40);
+}
+
 // The aligned edges the contact search watches (narrow_phase.hpp) are part of
 // what the list's staleness is measured from: a block sliding past an
 // aligned corner, checkpointed between two of the searches they cause.
