@@ -38,19 +38,6 @@ blast_model.charge_kg = 606               -- TNT of the field test (Eq. 23 uses 
 -- rest stay first-order; default 0, every block), kn (Pa/m: the joints' own
 -- normal stiffness; default none, the penalty g0 per contact; blast.lua gives
 -- meshed models 2*g0/spacing, the paper's joint read as a stiffness per length).
--- A block whose outline turns clockwise somewhere (the hole's corners cut four
--- such blocks): the mesher takes convex blocks only.
-local function concave(b)
-  local v = b:vertices()
-  local n = #v
-  for k = 1, n do
-    local a, p, c = v[(k - 2) % n + 1], v[k], v[k % n + 1]
-    local cross = (p[1] - a[1]) * (c[2] - p[2]) - (p[2] - a[2]) * (c[1] - p[1])
-    if cross < -1e-12 then return true end
-  end
-  return false
-end
-
 function blast_model.build(opts)
   opts = opts or {}
   local size = opts.size or 100
@@ -60,18 +47,14 @@ function blast_model.build(opts)
   for k, v in pairs(blast_model.controls) do controls[k] = v end
   for k, v in pairs(opts.controls or {}) do controls[k] = v end
   local mesh, mesh_radius = opts.mesh or 0, opts.mesh_radius or 0
-  -- Meshed: the centroids of the concave blocks, from the same geometry cut
-  -- first-order (no run). They stay first-order (a region each, painted over
-  -- the meshed rock) until the mesher takes concave outlines.
-  local concave_centroids, rock_blocks = {}, nil
+  -- Meshed: the number of blocks the joints cut (every element counts as a
+  -- block once meshed), from the same geometry cut first-order (no run).
+  local rock_blocks = nil
   if mesh > 0 then
     local plain = {}
     for k, v in pairs(opts) do plain[k] = v end
     plain.mesh, plain.kn = 0, nil
     local P = blast_model.build(plain)
-    for _, b in ipairs(P.blocks) do
-      if concave(b) then concave_centroids[#concave_centroids + 1] = { b:centroid() } end
-    end
     rock_blocks = #P.blocks
     P.m:close()
   end
@@ -98,14 +81,11 @@ function blast_model.build(opts)
     end
     m:region{ polygon = disc, rock = m:rock(rock_props) }
   end
-  for _, c in ipairs(concave_centroids) do
-    m:region{ box = { c[1] - 1e-3, c[2] - 1e-3, c[1] + 1e-3, c[2] + 1e-3 }, rock = m:rock(blast_model.rock) }
-  end
   local origin = opts.joint_origin or {0, 0}
   m:joint_set{ dip = 45, spacing = spacing, joint = joint, origin = origin }
   m:joint_set{ dip = 135, spacing = spacing, joint = joint, origin = origin }
   local blocks, info = m:generate(opts.min_area and { min_area = opts.min_area } or nil)
-  return { m = m, rock = rock, mesh = mesh, mesh_radius = mesh_radius, first_order_concave = #concave_centroids,
+  return { m = m, rock = rock, mesh = mesh, mesh_radius = mesh_radius,
            rock_blocks = rock_blocks or #blocks, joint = joint, chamber = chamber, blocks = blocks, info = info,
            wall = chamber:edges(), outer = m:edges{ boundary = "domain" }, h = h, size = size }
 end
