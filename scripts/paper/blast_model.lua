@@ -37,7 +37,23 @@ blast_model.charge_kg = 606               -- TNT of the field test (Eq. 23 uses 
 -- centroid lies within this distance of the detonation centre are meshed, the
 -- rest stay first-order; default 0, every block), kn (Pa/m: the joints' own
 -- normal stiffness; default none, the penalty g0 per contact; blast.lua gives
--- meshed models 2*g0/spacing, the paper's joint read as a stiffness per length).
+-- meshed models 2*g0/spacing, the paper's joint read as a stiffness per length),
+-- first_order_corners (true: with mesh > 0, the four blocks the chamber's
+-- corners cut concave stay first-order, as before CGAL meshed concave blocks;
+-- only for blast_corner_block.lua, which shows why that over-drives the wave).
+-- A block whose outline turns clockwise somewhere (the chamber's corners cut four such blocks).
+local function concave(b)
+  local v = b:vertices()
+  local n = #v
+  for k = 1, n do
+    local a, p, c = v[(k - 2) % n + 1], v[k], v[k % n + 1]
+    local cross = (p[1] - a[1]) * (c[2] - p[2]) - (p[2] - a[2]) * (c[1] - p[1])
+    if cross < -1e-12 then return true end
+  end
+  return false
+end
+blast_model.concave = concave
+
 function blast_model.build(opts)
   opts = opts or {}
   local size = opts.size or 100
@@ -49,13 +65,18 @@ function blast_model.build(opts)
   local mesh, mesh_radius = opts.mesh or 0, opts.mesh_radius or 0
   -- Meshed: the number of blocks the joints cut (every element counts as a
   -- block once meshed), from the same geometry cut first-order (no run).
-  local rock_blocks = nil
+  local rock_blocks, corner_centroids = nil, {}
   if mesh > 0 then
     local plain = {}
     for k, v in pairs(opts) do plain[k] = v end
     plain.mesh, plain.kn = 0, nil
     local P = blast_model.build(plain)
     rock_blocks = #P.blocks
+    if opts.first_order_corners then
+      for _, b in ipairs(P.blocks) do
+        if concave(b) then corner_centroids[#corner_centroids + 1] = { b:centroid() } end
+      end
+    end
     P.m:close()
   end
 
@@ -80,6 +101,10 @@ function blast_model.build(opts)
       disc[#disc + 1] = { mesh_radius * math.cos(a), mesh_radius * math.sin(a) }
     end
     m:region{ polygon = disc, rock = m:rock(rock_props) }
+  end
+  -- first_order_corners: a first-order region over each concave block's centroid
+  for _, c in ipairs(corner_centroids) do
+    m:region{ box = { c[1] - 1e-3, c[2] - 1e-3, c[1] + 1e-3, c[2] + 1e-3 }, rock = m:rock(blast_model.rock) }
   end
   local origin = opts.joint_origin or {0, 0}
   m:joint_set{ dip = 45, spacing = spacing, joint = joint, origin = origin }
