@@ -37,7 +37,7 @@ local lambda = rock.E * rock.nu / ((1 + rock.nu) * (1 - 2 * rock.nu))
 local G = rock.E / (2 * (1 + rock.nu))
 local cp = math.sqrt((lambda + 2 * G) / rock.density)   -- 5570 m/s
 local v_wall = 2.03                                        -- m/s, the DHI's peak
-local t_end = 1e-3
+local t_end = 2.2e-3     -- s: past the peak at MP1 (1.7-1.9 ms)
 
 -- distance from a point to the chamber wall (the rectangle's outline)
 local function wall_distance(p)
@@ -48,6 +48,28 @@ local function wall_distance(p)
 end
 
 local points = { { name = "far", at = { -4.243, 4.1 } }, { name = "side", at = { -5.5, 2.828 } } }
+-- the upper-left corner block's outline (the 2 m joints through the centre
+-- cut it): its kinetic energy and momentum, from monitors on a 0.1 m grid
+-- inside it (each stands for 0.01 m^2)
+local corner = { {-4, 2}, {-3.657, 2}, {-2.828, 2.828}, {-4.243, 4.243}, {-5.657, 2.828}, {-4.243, 1.414}, {-4, 1.657} }
+local function inside(p, poly)
+  local c = false
+  local j = #poly
+  for i = 1, #poly do
+    local a, b = poly[i], poly[j]
+    if (a[2] > p[2]) ~= (b[2] > p[2]) and p[1] < (b[1] - a[1]) * (p[2] - a[2]) / (b[2] - a[2]) + a[1] then c = not c end
+    j = i
+  end
+  return c
+end
+local grid = {}
+for x = -5.65, -2.8, 0.1 do
+  for y = 1.45, 4.25, 0.1 do
+    if inside({ x, y }, corner) then grid[#grid + 1] = { x, y } end
+  end
+end
+-- the axis above the roof (MP1 at y = 8): PPV = max |vy|, and when
+local axis = { 4, 6, 8 }
 
 local function run(first_order_corners)
   local M = blast_model.build{ size = 40, mesh = mesh, mesh_radius = 12, kn = 2 * blast_model.controls.g0 / 2,
@@ -62,8 +84,26 @@ local function run(first_order_corners)
                           mons[i]:block():area()))
     end
   end
+  local grid_mons = {}
+  for i, p in ipairs(grid) do grid_mons[i] = M.m:monitor{ at = p, fields = { "vx", "vy" }, csv = false } end
+  local axis_mons = {}
+  for i, y in ipairs(axis) do axis_mons[i] = M.m:monitor{ at = { 0, y }, fields = { "vx", "vy" }, name = string.format("corner_%s_axis_y%g", first_order_corners and "first_order" or "meshed", y) } end
   M.m:run{ time = t_end }
-  local res = {}
+  local res = { axis = {}, ke = 0, px = 0, py = 0 }
+  -- kinetic energy (J per m of depth) and momentum (kg m/s per m) of the
+  -- corner block at the load's peak, 0.5 ms
+  local cell = 0.1 * 0.1 * rock.density
+  for _, mon in ipairs(grid_mons) do
+    local t, vx, vy = mon:times(), mon:series("vx"), mon:series("vy")
+    local k = 1
+    while t[k + 1] and t[k + 1] <= 0.5e-3 + 1e-12 do k = k + 1 end
+    res.ke = res.ke + 0.5 * cell * (vx[k] ^ 2 + vy[k] ^ 2)
+    res.px, res.py = res.px + cell * vx[k], res.py + cell * vy[k]
+  end
+  for i, y in ipairs(axis) do
+    local v, t = axis_mons[i]:peak("vy")
+    res.axis[i] = { y = y, ppv = math.abs(v), t = t }
+  end
   for i, p in ipairs(points) do
     local t, vx, vy = mons[i]:times(), mons[i]:series("vx"), mons[i]:series("vy")
     local r = { name = p.name, travel = wall_distance(p.at) / cp, peak = 0 }
@@ -71,7 +111,7 @@ local function run(first_order_corners)
       local s = math.sqrt(vx[k] ^ 2 + vy[k] ^ 2)
       if not r.arrival and s > 0.01 * v_wall then r.arrival = t[k] end
       if t[k] <= 0.5e-3 + 1e-12 then r.at_peak = s end
-      r.peak = math.max(r.peak, s)
+      if t[k] <= 1e-3 + 1e-12 then r.peak = math.max(r.peak, s) end
     end
     res[i] = r
   end
@@ -88,6 +128,19 @@ for _, set in ipairs(results) do
     print(string.format("| %s | %s | %.3f | %s | %.3f | %.3f |", set.label, r.name, 1e3 * r.travel,
                         r.arrival and string.format("%.3f", 1e3 * r.arrival) or "none", r.at_peak, r.peak))
   end
+end
+
+print(string.format("upper-left corner block (%d grid points, %.2f m^2): at 0.5 ms", #grid, 0.01 * #grid))
+for _, set in ipairs(results) do
+  print(string.format("  %s: kinetic energy %.0f J/m, momentum (%.0f, %.0f) kg m/s per m", set.label, set.r.ke,
+                      set.r.px, set.r.py))
+end
+print("| corners | PPV at y = 4 / 6 / 8 m on the axis (m/s) | at (ms) |")
+print("|---|---|---|")
+for _, set in ipairs(results) do
+  local p, t = {}, {}
+  for i, a in ipairs(set.r.axis) do p[i] = string.format("%.3f", a.ppv); t[i] = string.format("%.2f", 1e3 * a.t) end
+  print(string.format("| %s | %s | %s |", set.label, table.concat(p, " / "), table.concat(t, " / ")))
 end
 
 if check then
