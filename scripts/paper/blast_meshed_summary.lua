@@ -47,34 +47,9 @@ local REFERENCE = { tag = "dhi_sbc_100_m0.5_r12", ppv_mp1 = 1.2984, ppv_mp2 = 1.
                     refl_mp1 = 3.77615e-05, refl_mp2 = 1.0991e-04, within2 = 9 }
 local TOL = { ppv = 0.01, uy = 0.01, refl = 0.05, count = 1 }
 
-local function read_csv(path)
-  local f = io.open(path, "r")
-  if not f then return nil end
-  local hdr, rows = nil, {}
-  for line in f:lines() do
-    local cells = {}
-    for c in (line .. ","):gmatch("([^,]*),") do cells[#cells + 1] = c end
-    if not hdr then hdr = cells else
-      local r = {}
-      for i, k in ipairs(hdr) do r[k] = tonumber(cells[i]) or cells[i] end
-      rows[#rows + 1] = r
-    end
-  end
-  f:close()
-  return rows
-end
-
-local function column(rows, k) local v = {} for i, r in ipairs(rows) do v[i] = r[k] end return v end
-
-local function reflected_energy(rows)
-  local e = 0
-  for i = 2, #rows do
-    if rows[i].time >= T_REFLECT then
-      e = e + (rows[i].vx ^ 2 + rows[i].vy ^ 2) * (rows[i].time - rows[i - 1].time)
-    end
-  end
-  return e
-end
+local blast_csv = require "blast_csv"
+local read_csv, column = blast_csv.read, blast_csv.column
+local function reflected_energy(rows) return blast_csv.reflected_energy(rows, T_REFLECT) end
 
 -- runs[mesh][boundary] = { dir, row (blast_runs.csv), hist = { MP1 =, MP2 =, MP3 = }, line = ppv rows }
 local runs, meshes = {}, {}
