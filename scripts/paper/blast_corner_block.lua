@@ -2,10 +2,11 @@
 -- too in the meshed Section 4 blast (docs/validation.md, "The paper's 2 m
 -- joints with meshed blocks").
 --
--- Models:  the blast model of blast_model.lua, 40 m (the waves of the first
---          millisecond stay 14 m from the boundary), 2 m joints, blocks meshed
+-- Models:  the blast model of blast_model.lua, 40 m (its boundary's first
+--          reflection reaches MP1 after about 6 ms), 2 m joints, blocks meshed
 --          at --set mesh (default 0.5 m) within 12 m of the centre, joints
---          k_n = 1e11 Pa/m, DHI on the chamber wall, Shi's scheme, run twice:
+--          k_n = 1e11 Pa/m, DHI on the chamber wall, Fixed boundary, Shi's
+--          scheme, 2.2 ms (past MP1's peak), run twice:
 --          "first-order corners" (the four blocks the chamber's corners cut,
 --          concave, 3.94 m^2 each, kept first-order as before CGAL meshed
 --          concave blocks) and "meshed corners".
@@ -16,8 +17,9 @@
 --          (the integral of the triangular velocity, 0.5 x 2.03 m/s x 0.5 ms)
 --          along its normal, so the chamber's corner point (-4, 2) by -0.5075
 --          mm in x and +0.5075 mm in y (it belongs to both walls; a monitor
---          3 mm inside the rock reads it). (2) Causality. Nothing moves before the P wave from the wall can
---          reach it: arrival >= distance / C_P, C_P = 5570 m/s (plane strain).
+--          3 mm inside the rock reads it). (2) Causality: nothing moves before
+--          the P wave from the wall can reach it, arrival >= distance / C_P,
+--          C_P = 5570 m/s (plane strain).
 --          Arrival: the first time |v| exceeds 1 % of the DHI's 2.03 m/s.
 -- Run:     build/dda run scripts/paper/blast_corner_block.lua [--set mesh=0.5]
 --          [--set check=true]
@@ -29,8 +31,11 @@
 --          strain cannot follow the two walls' stubs) and the far monitor moves
 --          before a third of its travel time (the block is a plug: its far side
 --          moves with the wall).
--- Writes:  stdout: arrival, travel time, peak |v| and |v| at 0.5 ms (the load's
---          peak) at each monitor, for both models.
+-- Writes:  stdout, for both models: arrival, travel time, |v| at 0.5 ms (the
+--          load's peak) and peak |v| to 1 ms at each monitor; the corner point's
+--          displacement at 0.5 ms; the corner block's kinetic energy and
+--          momentum at 0.5 ms; the PPV on the axis at y = 4, 6, 8 m.
+--          corner_<first_order|meshed>_axis_y<4|6|8>.csv: vx, vy on the axis.
 
 local dda = require "dda"
 local blast_model = require "blast_model"
