@@ -3,7 +3,7 @@
 -- joints with meshed blocks").
 --
 -- Models:  the blast model of blast_model.lua, 40 m (its boundary's first
---          reflection reaches MP1 after about 6 ms), 2 m joints, blocks meshed
+--          reflection reaches MP1 after about 5 ms), 2 m joints, blocks meshed
 --          at --set mesh (default 0.5 m) within 12 m of the centre, joints
 --          k_n = 1e11 Pa/m, DHI on the chamber wall, Fixed boundary, Shi's
 --          scheme, 2.2 ms (past MP1's peak), run twice:
