@@ -60,8 +60,9 @@
 --          joints the paper's stiffness per length, kn = 2*g0/spacing (1e11 Pa/m at
 --          2 m), so that a joint keeps its stiffness whatever the mesh (--set
 --          kn=K overrides it, Pa/m; kn=0 keeps the penalty g0 per contact). Tags
---          end in _m<H>[_r<R>]. docs/validation.md, "Section 4 with meshed 2 m
---          blocks", has the convergence runs.
+--          end in _m<H>[_r<R>]. docs/validation.md, Section 4 notes ("The paper's
+--          2 m joints with meshed blocks"), has the convergence runs; the
+--          0.05 s runs' Figs. 15-18: blast_meshed_summary.lua.
 --          --set integrator=newmark|generalized_alpha: the time integrator
 --          (default "shi", the paper's, pinned whatever the engine's default);
 --          --set rho_inf=0.8: generalized-α's spectral radius at infinity.

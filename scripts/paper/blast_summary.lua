@@ -68,24 +68,8 @@ local function split(s)
   return t
 end
 
-local function read_csv(path)
-  local f = io.open(path, "r")
-  if not f then return nil end
-  local hdr, rows = nil, {}
-  for line in f:lines() do
-    local cells = {}
-    for c in (line .. ","):gmatch("([^,]*),") do cells[#cells + 1] = c end
-    if not hdr then hdr = cells else
-      local r = {}
-      for i, k in ipairs(hdr) do r[k] = tonumber(cells[i]) or cells[i] end
-      rows[#rows + 1] = r
-    end
-  end
-  f:close()
-  return rows
-end
-
-local function column(rows, k) local v = {} for i, r in ipairs(rows) do v[i] = r[k] end return v end
+local blast_csv = require "blast_csv"
+local read_csv, column = blast_csv.read, blast_csv.column
 
 local function copy(src, dst)
   local i = io.open(src, "rb")
@@ -157,15 +141,7 @@ local function history(S, run, mp)
 end
 
 -- integral of vx^2 + vy^2 over t >= T_REFLECT
-local function reflected_energy(rows)
-  local e = 0
-  for i = 2, #rows do
-    if rows[i].time >= T_REFLECT then
-      e = e + (rows[i].vx ^ 2 + rows[i].vy ^ 2) * (rows[i].time - rows[i - 1].time)
-    end
-  end
-  return e
-end
+local function reflected_energy(rows) return blast_csv.reflected_energy(rows, T_REFLECT) end
 
 -- ------------------------------------------------------------------ the numbers
 
