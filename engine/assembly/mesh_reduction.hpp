@@ -18,8 +18,12 @@
 // blocks or nodes with fixed sums per row, and the dot products are
 // deterministic: the result is the same for any thread count.
 //
-// No stored matrix is offered, so the multigrid and CHOLMOD backends do not
-// take meshed models (docs/meshed_blocks.md).
+// No stored matrix of Pᵀ S P is offered, so the multigrid and CHOLMOD
+// backends do not take meshed models (docs/meshed_blocks.md); the meshed
+// blocks' own matrices are gathered for their factors only.
+#include <Eigen/Cholesky>
+#include <Eigen/SparseCholesky>
+#include <Eigen/SparseCore>
 #include <array>
 #include <memory>
 #include <vector>
@@ -35,14 +39,32 @@ class MeshedSolver final : public LinearSolver {
   // elements, from the blocks as they are at the step's start.
   void set_blocks(const Blocks& blocks);
 
+  void begin_step(const SolverSettings& settings, const StepSolveInfo& info) override;
   void set_operator(const LinearOperator& a) override { a_ = &a; }
   // b and x are per block (six each), as the step assembles them; x holds
   // the initial guess, which is read at the nodes through the first element
   // that has each node.
   SolveReport solve(const VecX& b, VecX& x) override;
   const char* name() const override { return "pcg-meshed"; }
+  // The meshed blocks' factors (as the entries they were made from); load
+  // after set_blocks.
+  void save_state(ArchiveWriter& ar) const override;
+  void load_state(ArchiveReader& ar) override;
 
   int free_unknowns() const { return unknowns_; }
+  // Numeric factorisations of the meshed blocks' matrices so far (each one
+  // factorises every meshed block).
+  int factorisations() const { return factorisations_; }
+
+  // A solve that took more CG iterations than this with the kept factors has
+  // the next solve factorise the current matrices: in a wave the nodal
+  // matrices drift little from step to step (the elements hardly turn) and a
+  // kept factor preconditions almost as well as a fresh one.
+  static constexpr int kRefactorIterations = 6;
+  // Meshed blocks of at most this many unknowns (twice their nodes) are
+  // factorised dense: for small meshes a sparse factor's bookkeeping costs
+  // more than the arithmetic it saves.
+  static constexpr int kDenseUnknowns = 96;
 
  private:
   void expand(const VecX& y, VecX& d) const;    // d = P·y
@@ -50,6 +72,30 @@ class MeshedSolver final : public LinearSolver {
   void apply(const VecX& y, VecX& out);         // out = Pᵀ S P y
   void set_up_preconditioner();
   void precondition(const VecX& r, VecX& z) const;
+  void set_up_mesh_groups(const Blocks& blocks);
+  void factorise_meshes();
+  struct MeshGroup;
+  template <class ElementMatrix>
+  void gather_entries(MeshGroup& group, ElementMatrix element_matrix) const;
+  static void factorise(MeshGroup& group);
+  void precondition_meshes(const VecX& r, VecX& z) const;
+
+  // One meshed block: its elements and nodes, and the Cholesky factor of its
+  // nodal matrix (the elements' A_eᵀ S_ee A_e gathered on its nodes).
+  struct MeshGroup {
+    std::vector<int> elements;                    // block ids, ascending
+    std::vector<int> nodes;                       // global node ids, ascending; the local index is the position
+    std::vector<std::array<int, 3>> local;        // per element, its nodes' local indices
+    std::vector<Eigen::Triplet<double>> entries;  // scratch: the 36 entries per element
+    Eigen::SparseMatrix<double> matrix;
+    std::unique_ptr<Eigen::SimplicialLLT<Eigen::SparseMatrix<double>, Eigen::Lower, Eigen::AMDOrdering<int>>> factor;
+    bool dense = false;  // a small mesh: a dense factor (no sparse bookkeeping per solve)
+    Eigen::MatrixXd dense_matrix;
+    Eigen::LLT<Eigen::MatrixXd> dense_factor;
+    bool analysed = false, factored = false;
+    std::vector<Eigen::Matrix2d> diagonal_inverse;  // per node, where the factorisation failed
+    mutable Eigen::VectorXd rhs, solution;
+  };
 
   const LinearOperator* a_ = nullptr;
   int blocks_ = 0, nodes_ = 0, unknowns_ = 0, node_base_ = 0, size_ = 0;
@@ -60,7 +106,12 @@ class MeshedSolver final : public LinearSolver {
   std::vector<int> node_start_;                   // per node: its (element, corner) entries, by element
   std::vector<std::pair<int, int>> node_corner_;
   std::vector<Mat6> block_inverse_;            // preconditioner, per first-order block
-  std::vector<Eigen::Matrix2d> node_inverse_;  // preconditioner, per node
+  std::vector<Eigen::Matrix2d> node_inverse_;  // preconditioner, per node (NodeJacobi)
+  MeshPreconditioning mesh_preconditioning_ = MeshPreconditioning::BlockFactor;
+  std::vector<MeshGroup> groups_;  // per meshed block (BlockFactor)
+  std::vector<int> group_mesh_;    // the blocks' mesh ids the groups were made for
+  bool refactor_ = true;
+  int factorisations_ = 0;
   mutable std::vector<Vec6> element_force_;
   VecX d_, s_d_, br_, xr_, r_, z_, p_, q_;
 };

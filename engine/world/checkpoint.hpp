@@ -31,8 +31,9 @@
 
 namespace dda {
 
-// 1: the first format. 2: the contact search's watched aligned edges.
-inline constexpr std::uint32_t kCheckpointFormat = 2;
+// 1: the first format. 2: the contact search's watched aligned edges. 3: the
+// meshed solver's factors.
+inline constexpr std::uint32_t kCheckpointFormat = 3;
 
 // The World's state and `extra` (bytes its owner keeps beside it: the Lua
 // layer's loads and monitors), as a checkpoint file's bytes.
