@@ -33,6 +33,31 @@
 
 namespace dda {
 
+// An element's map A_e (D_e = A_e·u_e) by its shape functions' coefficients
+// about its centroid, N_k = α_k + β_k·x + γ_k·y: a corner's (u_k, v_k) gives
+// D_e = (α_k·u_k, α_k·v_k, (β_k·v_k − γ_k·u_k)/2, β_k·u_k, γ_k·v_k,
+// γ_k·u_k + β_k·v_k).
+struct ElementShape {
+  double alpha[3], beta[3], gamma[3];
+  Mat6 map() const {
+    Mat6 a;
+    for (int k = 0; k < 3; ++k) {
+      a.col(2 * k) << alpha[k], 0, -gamma[k] / 2, beta[k], 0, gamma[k];
+      a.col(2 * k + 1) << 0, alpha[k], beta[k] / 2, 0, gamma[k], beta[k];
+    }
+    return a;
+  }
+  // A_eᵀ·f: the nodal forces of a generalised force f on the element.
+  Vec6 transpose_times(const Vec6& f) const {
+    Vec6 u;
+    for (int k = 0; k < 3; ++k) {
+      u[2 * k] = alpha[k] * f[0] - gamma[k] / 2 * f[2] + beta[k] * f[3] + gamma[k] * f[5];
+      u[2 * k + 1] = alpha[k] * f[1] + beta[k] / 2 * f[2] + gamma[k] * f[4] + beta[k] * f[5];
+    }
+    return u;
+  }
+};
+
 class MeshedSolver final : public LinearSolver {
  public:
   // Once per step, before its solves: the elements' maps A_e and the nodes'
@@ -101,7 +126,7 @@ class MeshedSolver final : public LinearSolver {
   int blocks_ = 0, nodes_ = 0, unknowns_ = 0, node_base_ = 0, size_ = 0;
   std::vector<int> offset_;                       // per block: its first free unknown (first-order), or -1
   std::vector<std::array<int, 3>> element_node_;  // per block: its nodes (elements)
-  std::vector<Mat6> map_;                         // per block: A_e (elements)
+  std::vector<ElementShape> shape_;               // per block: A_e (elements)
   std::vector<Mat6> corners_;                     // per block: A_e⁻¹, T at the three corners (elements)
   std::vector<int> node_start_;                   // per node: its (element, corner) entries, by element
   std::vector<std::pair<int, int>> node_corner_;
