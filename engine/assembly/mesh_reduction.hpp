@@ -77,9 +77,6 @@ class MeshedSolver final : public LinearSolver {
   void load_state(ArchiveReader& ar) override;
 
   int free_unknowns() const { return unknowns_; }
-  // Numeric factorisations of the meshed blocks' matrices so far (each one
-  // factorises every meshed block).
-  int factorisations() const { return factorisations_; }
 
   // A solve that took more CG iterations than this with the kept factors has
   // the next solve factorise the current matrices: in a wave the nodal
@@ -108,10 +105,12 @@ class MeshedSolver final : public LinearSolver {
   // One meshed block: its elements and nodes, and the Cholesky factor of its
   // nodal matrix (the elements' A_eᵀ S_ee A_e gathered on its nodes).
   struct MeshGroup {
-    std::vector<int> elements;                    // block ids, ascending
-    std::vector<int> nodes;                       // global node ids, ascending; the local index is the position
-    std::vector<std::array<int, 3>> local;        // per element, its nodes' local indices
-    std::vector<Eigen::Triplet<double>> entries;  // scratch: the 36 entries per element
+    std::vector<int> elements;              // block ids, ascending
+    std::vector<int> nodes;                 // global node ids, ascending; the local index is the position
+    std::vector<std::array<int, 3>> local;  // per element, its nodes' local indices
+    // The lower triangles of its elements' matrices, in element order: what
+    // its factor was last made from (a checkpoint saves them).
+    std::vector<Eigen::Triplet<double>> entries;
     Eigen::SparseMatrix<double> matrix;
     std::unique_ptr<Eigen::SimplicialLLT<Eigen::SparseMatrix<double>, Eigen::Lower, Eigen::AMDOrdering<int>>> factor;
     bool dense = false;  // a small mesh: a dense factor (no sparse bookkeeping per solve)
@@ -136,7 +135,7 @@ class MeshedSolver final : public LinearSolver {
   std::vector<MeshGroup> groups_;  // per meshed block (BlockFactor)
   std::vector<int> group_mesh_;    // the blocks' mesh ids the groups were made for
   bool refactor_ = true;
-  int factorisations_ = 0;
+  int factorisations_ = 0;  // so far; each factorises every meshed block (SolveReport::factorisations)
   mutable std::vector<Vec6> element_force_;
   VecX d_, s_d_, br_, xr_, r_, z_, p_, q_;
 };
