@@ -43,10 +43,17 @@ struct CholmodSettings {
 // (solver_choice.hpp); the others are fixed.
 enum class SolverKind { Auto, Pcg, Cholmod };
 
+// The preconditioner of meshed models' nodes (MeshedSolver,
+// assembly/mesh_reduction.hpp): each meshed block's own nodal matrix,
+// factorised (a Cholesky factor per meshed block, kept while it serves), or
+// the nodes' 2×2 diagonal blocks.
+enum class MeshPreconditioning { BlockFactor, NodeJacobi };
+
 struct SolverSettings {
   SolverKind kind = SolverKind::Auto;
   PcgSettings pcg;
   CholmodSettings cholmod;
+  MeshPreconditioning mesh_preconditioner = MeshPreconditioning::BlockFactor;
 };
 
 }  // namespace dda

@@ -29,6 +29,7 @@ constexpr const char* kContactLawNames[] = {"holding", "shi"};                  
 constexpr const char* kPreconditionerNames[] = {"auto", "block_jacobi", "multigrid"};  // Preconditioning order
 constexpr const char* kSolverNames[] = {"auto", "pcg", "cholmod"};                     // SolverKind order
 constexpr const char* kFillOrderingNames[] = {"metis", "amd"};                         // FillOrdering order
+constexpr const char* kMeshPreconditionerNames[] = {"block_factor", "node_jacobi"};    // MeshPreconditioning order
 
 constexpr ControlSpec number(const char* name, double& (*field)(Controls&), ControlRange range, const char* doc,
                              const char* default_text = nullptr) {
@@ -234,6 +235,13 @@ const ControlSpec kControls[] = {
         [](const Controls& c) { return static_cast<int>(c.solver.pcg.preconditioner); },
         [](Controls& c, int i) { c.solver.pcg.preconditioner = static_cast<Preconditioning>(i); },
         "`\"auto\"`, `\"block_jacobi\"` or `\"multigrid\"`"),
+    choice(
+        "mesh_preconditioner", kMeshPreconditionerNames,
+        [](const Controls& c) { return static_cast<int>(c.solver.mesh_preconditioner); },
+        [](Controls& c, int i) { c.solver.mesh_preconditioner = static_cast<MeshPreconditioning>(i); },
+        "models with meshed blocks: `\"block_factor\"` (each meshed block's nodal matrix, a Cholesky "
+        "factor kept across solves while they take few CG iterations) or `\"node_jacobi\"` (the nodes' 2×2 "
+        "diagonal blocks); first-order blocks keep block-Jacobi (`docs/meshed_blocks.md`)"),
     integer(
         "cg_max_iterations", [](Controls& c) -> int& { return c.cg_max_iterations; }, kZeroAutomaticOrPositive,
         "0 = automatic"),

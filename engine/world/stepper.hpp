@@ -12,6 +12,7 @@
 
 #include "assembly/block_terms.hpp"
 #include "assembly/contact_operator.hpp"
+#include "assembly/mesh_reduction.hpp"
 #include "block/motion.hpp"
 #include "block/time_scheme.hpp"
 #include "contact/contact_detection.hpp"
@@ -44,7 +45,7 @@ class Stepper {
     ar(has_solver);
     if constexpr (Archive::reading) {
       solver_ = has_solver ? make_linear_solver(w.controls.solver) : nullptr;
-      if (solver_ && !w.blocks.has_meshes()) solver_->load_state(ar);  // a MeshedSolver keeps no state
+      if (solver_) use_meshed_solver(solver_, w.blocks), solver_->load_state(ar);
       system_.set_contacts(static_cast<int>(w.blocks.count()), w.contacts);
     } else if (solver_) {
       solver_->save_state(ar);

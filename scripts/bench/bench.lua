@@ -6,6 +6,7 @@
 --          after --set warmup=2 untimed ones (another warmup names the row
 --          blast(0.5)@2500: timed after 2500 steps); --set pre=block_jacobi|multigrid
 --          forces a preconditioner (default: the scene's, auto); --set
+--          mesh_pre=block_factor|node_jacobi the meshed blocks' (mesh_preconditioner); --set
 --          predict=false starts open-close iterations from the last step's
 --          contact states (predict_states = false); --set patch=0 re-solves
 --          over all rows only (patch_hops = 0), --set patch=N
@@ -33,6 +34,7 @@ local steps = dda.param("steps", 10)
 local warmup = dda.param("warmup", 2)
 local csv = dda.param("csv", "")
 local pre = dda.param("pre", "")  -- preconditioner; "" keeps the scene's (auto)
+local mesh_pre = dda.param("mesh_pre", "")  -- mesh_preconditioner; "" keeps the default
 local integrator = dda.param("integrator", "")
 local predict = dda.param("predict", true)  -- false: open-close iterations start from the last step's states
 local patch = dda.param("patch", -1)  -- re-solve patch hops; -1 keeps the engine's default
@@ -65,6 +67,7 @@ if solver ~= "" then
   name = string.format("%s[%s]", name, solver)
 end
 if pre ~= "" then m:controls{ preconditioner = pre } end
+if mesh_pre ~= "" then m:controls{ mesh_preconditioner = mesh_pre } end
 m:controls{ predict_states = predict }
 if integrator ~= "" then m:controls{ integrator = integrator } end
 if patch >= 0 then m:controls{ patch_hops = patch } end
