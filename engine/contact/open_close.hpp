@@ -51,6 +51,8 @@ struct OpenCloseState {
   std::vector<ContactIterate> iterate;
   std::vector<char> changed;                 // by the last check (its rows are reassembled)
   int friction_passes = 0;                   // solves of this attempt redone for friction alone
+  int gross_passes = 0;                      // ... of them for a gross lag, not counted by the open-close limit
+  bool free_pass = false;                    // the last check asked for such a solve
   std::vector<ContactIterationState> saved;  // at the start of the step, for a redo
 };
 

@@ -339,6 +339,7 @@ Rejection Stepper::open_close(WorldState& w) {
     }
     if (changed) {
       tightening = false;
+      if (open_close_.free_pass) --it;  // for friction that lagged grossly alone: free too
     } else if (solver_->tolerance == regime_.accept_tolerance) {
       return Rejection::None;  // settled
     } else {
