@@ -72,7 +72,7 @@ constexpr int kMaxFrictionPasses = 1;
 // docs/contacts.md), up to kMaxGrossPasses an attempt. A block dropped onto
 // its springs by gravity switched on at once changes N by factors of 2 to 8
 // between solves; a landing's friction lags by up to 30 % (at 30 % and
-// below, the 1 m landing of Friction.BlockLandingOnAFlatFaceStopsWhereItLands
+// below, the 1 m landing of Friction.BlockLandingOnAFlatFaceFromOneMetreEndsWhereItLands
 // ends 0.3 mm back, not 19 µm).
 constexpr double kGrossLag = 0.5;
 constexpr int kMaxGrossPasses = 30;

@@ -479,9 +479,12 @@ TEST(Friction, BlockLandingFromAMicrometreSlidesFromItsFirstStep) {
 // point, and below 1 mm/s at 1 s (measured 19 µm under "holding", 6 µm under
 // "shi"). Before, under "holding", its landing contacts locked (the friction
 // band, 1 % of the fall in the step) and their shear springs threw it back
-// 2.4 mm. (Harder landings still throw blocks back under both laws:
-// docs/contacts.md, Known limits.)
-TEST(Friction, BlockLandingOnAFlatFaceStopsWhereItLands) {
+// 2.4 mm. A pin of this one height, not a general property: the landing
+// bounces (the penalty springs' restitution) and the block rocks on a
+// corner; dropped from 0.98, 0.99, 1.01 or 1.02 m it ends 0.06 to 0.77 m
+// back under either law, and harder landings are thrown back too
+// (docs/contacts.md, Known limits, "A hard landing on a rough face").
+TEST(Friction, BlockLandingOnAFlatFaceFromOneMetreEndsWhereItLands) {
   for (const ContactLaw law : {ContactLaw::Holding, ContactLaw::Shi}) {
     World w;
     const int rock = w.add_rock_material(test::granite());
