@@ -119,7 +119,7 @@ dda_run_test(paper.blast_mesh_converged long 3600 paper/blast.lua --set figure=m
              --set mesh_radius=12 --set t_end=0.005 --set max_change=0.05)
 # Figs. 15-18 with meshed 2 m blocks (docs/validation.md, Section 4 notes,
 # "Figs. 15-18 with meshed 2 m blocks"): the cheapest of the report's 0.05 s
-# runs, SBC with 0.5 m elements within 12 m (2.5-5 minutes of CPU), rerun and summarised by
+# runs, SBC with 0.5 m elements within 12 m (about a minute of CPU), rerun and summarised by
 # blast_meshed_summary.lua, whose check compares it with the report's run (made
 # on a 16-core machine; bit-identical for any thread count): PPV at MP1 and MP2
 # and MP3's uy at 0.05 s within 1 %, the reflected energies at MP1 and MP2
