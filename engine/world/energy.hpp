@@ -2,6 +2,7 @@
 // The energy budget's accounting (energy_budget.hpp), in Update: from the
 // accepted step displacement, before anything moves.
 #include <span>
+#include <vector>
 
 #include "contact/contact_detection.hpp"
 #include "contact/open_close.hpp"
@@ -13,7 +14,14 @@ namespace dda {
 // before and after d (the end-of-step velocity from the time scheme), the
 // contacts' forces from the last check, the loads' and boundaries' work.
 // `elastic` per rock material, `fixed_spring` = fixed_point_factor × g0.
+// The blocks' terms are computed in parallel into `per_block` (the caller's,
+// kept from step to step: a step allocates nothing) and summed in block
+// order, the same bits for any thread count.
+struct BlockEnergyTerms {
+  double kinetic_before = 0, kinetic_after = 0, strain_before = 0, strain_after = 0, gravity = 0, damping = 0;
+};
 void account_step_energy(WorldState& w, const VecX& d, const TimeScheme& scheme, std::span<const Mat3> elastic,
-                         const ContactLinearisation& lin, const ContactParameters& contact_law, double fixed_spring);
+                         const ContactLinearisation& lin, const ContactParameters& contact_law, double fixed_spring,
+                         std::vector<BlockEnergyTerms>& per_block);
 
 }  // namespace dda
