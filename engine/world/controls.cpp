@@ -95,17 +95,16 @@ const ControlSpec kControls[] = {
     choice(
         "contact_law", kContactLawNames, [](const Controls& c) { return static_cast<int>(c.contact_law); },
         [](Controls& c, int i) { c.contact_law = static_cast<ContactLaw>(i); },
-        "`\"holding\"`: a contact's shear force is continuous through its changes of state (a contact "
-        "that locks again keeps the force its spring carried), friction agrees with the normal force of "
-        "the accepted solve, its open-close and friction decisions have bands in the step's units (no "
+        "`\"holding\"` (default): a contact's shear force is continuous through its changes of state (a "
+        "contact that locks again keeps the force its spring carried), friction agrees with the normal force "
+        "of the accepted solve, its open-close and friction decisions have bands in the step's units (no "
         "length of the model, no force through g0), and joints without cohesion or tension are unbonded "
-        "from the start: a block that must hold on a slope holds at every Δt; not yet the default: at Δt ≤ "
-        "1e-5 s a sliding block chatters (under `\"shi\"` too; `strain_damping` or `friction_lag` cures it). `\"shi\"` "
-        "(default): Shi's "
-        "law as the engine "
-        "has always had it: "
-        "a contact that closes or locks again does so unloaded, and a block that must stay on a slope creeps "
-        "down it at small Δt; the paper's scripts pin it to reproduce the paper's figures (docs/contacts.md)"),
+        "from the start: a block that must hold on a slope holds at every Δt, and one that slides does so at "
+        "the closed-form rate; at Δt ≤ 1e-5 s a sliding block chatters (under `\"shi\"` too; "
+        "`strain_damping` or `friction_lag` cures it). `\"shi\"`: Shi's law as the engine had it before the "
+        "holding law, bit for bit: a contact that closes or locks again does so unloaded, and a block that "
+        "must stay on a slope creeps down it at small Δt; the paper's scripts pin it to reproduce the "
+        "paper's figures and the validation report (docs/contacts.md)"),
     number(
         "strain_damping", [](Controls& c) -> double& { return c.strain_damping; }, kZeroOffOrPositive,
         "s: Kelvin–Voigt damping of the blocks' strains, σ = E(ε + β·ε̇) with β this value: a damping ratio "

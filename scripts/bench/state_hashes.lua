@@ -5,7 +5,7 @@
 -- Run:     build/dda run scripts/bench/state_hashes.lua [--set threads=2] [--set only=bar]
 --                [--set contact_law=shi]
 --          Compare the output with bench/state_hashes.txt (contact_law
---          "holding", opt-in) or bench/state_hashes_shi.txt (contact_law=shi,
+--          "holding", the default) or bench/state_hashes_shi.txt (contact_law=shi,
 --          the engine's results before the holding law, bit for bit): a
 --          refactoring that must not change results prints the same lines.
 --          (tests script.state_hashes and script.state_hashes_shi compare them.)

@@ -142,10 +142,16 @@ TEST(Cholmod, KeepsItsFactorAndRefactorisesPastTheBound) {
 }
 
 // Stepped with the factor, a wall keeps it across open-close iterations and
-// steps: fewer factorisations than solves.
+// steps: fewer factorisations than solves. The bound (at most half) was set on
+// the wall's open-close counts under contact_law = "shi" (17 solves, 7
+// factorisations in 6 steps), which the test pins: the solver is under test,
+// not the law. Under "holding" the wall settles in fewer solves a step (14,
+// with 8 factorisations in 6 steps; 43 and 17 in 20 steps): about one
+// factorisation a step under either law.
 TEST(Cholmod, StepsFactoriseLessOftenThanTheySolve) {
   World w = test::brick_wall(10);
   w.controls().threads = 1;
+  w.controls().contact_law = ContactLaw::Shi;
   w.controls().solver.kind = SolverKind::Cholmod;
   int solves = 0, factorisations = 0;
   for (int s = 0; s < 6; ++s) {

@@ -5,7 +5,7 @@
 // stopping the run; and a step that cannot be completed names its deepest
 // contact and a cure that is true. Rigid-block references (closed forms);
 // the blocks are elastic granite on springs of g0 = 50 E. Each dynamic test
-// runs under both contact laws ("shi", the default, and "holding").
+// runs under both contact laws ("holding", the default, and "shi").
 #include <gtest/gtest.h>
 
 #include <algorithm>

@@ -42,7 +42,7 @@ struct Incline {
     if (model_velocity != 0) w.set_block_velocity(block, Vec6(model_velocity, 0, 0, 0, 0, 0));
     w.controls().gravity = Vec2(0, -kG);
     w.controls().g1 = dt;
-    w.controls().contact_law = ContactLaw::Holding;  // opt-in (controls.hpp)
+    w.controls().contact_law = ContactLaw::Holding;  // the default, set explicitly (controls.hpp)
     down_slope = Vec2(-std::cos(a), -std::sin(a));
     on_block = w.add_tracked_point(block, test::rotated({Vec2(2.5, lift)}, a)[0]);
     on_base = w.add_tracked_point(base, test::rotated({Vec2(2.5, 0)}, a)[0]);
@@ -273,7 +273,7 @@ struct Stack {
     upper = w.add_block(test::rotated(test::rectangle(3.2, 0.5, 0.5, 0.5), a), rock, {slippery, 0, 0, 0});
     w.controls().gravity = Vec2(0, -kG);
     w.controls().g1 = dt;
-    w.controls().contact_law = ContactLaw::Holding;  // opt-in (controls.hpp)
+    w.controls().contact_law = ContactLaw::Holding;  // the default, set explicitly (controls.hpp)
     down = Vec2(-std::cos(a), -std::sin(a));
     const Vec2 middle = test::rotated({Vec2(2.5, 0)}, a)[0];
     on_lower = w.add_tracked_point(lower, middle), on_base = w.add_tracked_point(base, middle);
