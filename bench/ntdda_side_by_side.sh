@@ -36,7 +36,8 @@
 # Opencriteria f0, fractions of w0 = half the model's larger side) are both set
 # to 2e-7: with its default s0 = 2e-4 a contact that opened only closes again
 # after penetrating 2e-4 w0 (4 mm on wall(40)), and the quasi-static wall falls
-# freely. This engine runs with its defaults (contact_tolerance 1e-9 of half the
+# freely. This engine runs Shi's contact law (contact_law = "shi", ntdda's law,
+# pinned by ntdda_wall.lua) with its defaults (contact_tolerance 1e-9 of half the
 # model height) and, in the rows marked "tol=ntdda", with contact_tolerance set
 # to ntdda's 2e-7 w0.
 #

@@ -5,7 +5,9 @@
 --          dynamic), --set solver=auto|pcg|cholmod, --set tol=default|ntdda|<number>
 --          (ntdda: contact_tolerance set to ntdda's open-close tolerance,
 --          2e-7 of w0 = half the model's larger side, where ours is a fraction of
---          half its height; a number: that contact_tolerance), --set threads,
+--          half its height; a number: that contact_tolerance), --set law=shi|holding
+--          (default "shi", ntdda's own contact law, under which contact_tolerance
+--          acts; "holding" has bands of its own), --set threads,
 --          --set steps=10 timed after
 --          --set warmup=2.
 -- Run:     build/dda run bench/ntdda_wall.lua --set n=20 --set gg=1
@@ -28,7 +30,7 @@ local steps = dda.param("steps", 10)
 local warmup = dda.param("warmup", 2)
 
 local m = scenes.wall(n, threads)
-m:controls{ gg = gg, solver = solver }
+m:controls{ gg = gg, solver = solver, contact_law = dda.param("law", "shi") }
 if tol == "ntdda" then
   -- The wall spans x from -1 to n + 1 and y from -1 to n: ntdda's w0 is (n + 2) / 2,
   -- half our model height (n + 1) / 2.

@@ -7,6 +7,7 @@
 --          1.81281 m/s^2, so it travels s = 1/2 a t^2 down the slope; with
 --          phi >= alpha (e.g. --set phi=35) it stays put.
 -- Run:     build/dda run scripts/incline.lua [--set t_end=1.0] [--set phi=20] [--set alpha=30]
+--                [--set dt=1e-3] [--set law=shi]
 -- Writes:  out/incline.csv (step, time, ux, uy, vx, vy of the block's centre),
 --          and prints the distance slid beside 1/2 a t^2 as it goes.
 
@@ -18,7 +19,10 @@ local phi = dda.param("phi", 20)        -- joint friction angle, degrees
 local t_end = dda.param("t_end", 1.0)   -- s
 
 -- m and centre are globals: `dda console` can reach them after the run.
-m = dda.model{ plane = "stress", gravity = {0, -g}, g1 = dda.param("dt", 1e-3), g2 = 0.01 }
+-- law: nil leaves the engine's default contact law ("holding"); --set law=shi
+-- runs Shi's, under which a block that must hold creeps at small dt.
+m = dda.model{ plane = "stress", gravity = {0, -g}, g1 = dda.param("dt", 1e-3), g2 = 0.01,
+               contact_law = dda.param("law", nil) }
 local rock = m:rock{ density = 2600, E = 5e9, nu = 0.25 }
 local joint = m:joint{ friction = phi }
 

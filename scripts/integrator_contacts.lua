@@ -12,7 +12,8 @@
 --          Each under shi, newmark and generalized-alpha at rho_inf = 0.9,
 --          0.8, 0.6, 0.5, 0.3.
 -- Run:     build/dda run scripts/integrator_contacts.lua [--set schemes=shi,newmark,0.8]
---          (a number is generalized-alpha's rho_inf)
+--          [--set law=shi] (a number is generalized-alpha's rho_inf; law: the
+--          contact law, the engine's default when not set)
 -- Writes:  nothing; prints one line per model and scheme (slip against the
 --          closed form, Δt cuts, open-close iterations; a run the engine cannot
 --          finish is reported with its error).
@@ -21,9 +22,11 @@ local dda = require "dda"
 
 local g = 9.81
 local wanted = tostring(dda.param("schemes", "shi,newmark,0.9,0.8,0.6,0.5,0.3"))
+local law = dda.param("law", nil)  -- nil: the engine's default contact law ("holding")
 
 local function model(scheme, rho)
-  return dda.model{ plane = "stress", gravity = {0, -g}, g1 = 1e-3, g2 = 0.01, integrator = scheme, rho_inf = rho }
+  return dda.model{ plane = "stress", gravity = {0, -g}, g1 = 1e-3, g2 = 0.01, integrator = scheme, rho_inf = rho,
+                    contact_law = law }
 end
 
 -- The distance slid down the incline in 0.5 s and the closed form.

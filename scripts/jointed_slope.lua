@@ -19,7 +19,7 @@ local dda = require "dda"
 
 local t_end = dda.param("t_end", 5)
 local dt = dda.param("dt", 1e-3)
-local law = dda.param("law", "shi")
+local law = dda.param("law", nil)  -- nil: the engine's default contact law ("holding"); --set law=shi for Shi's
 
 m = dda.model{ plane = "strain", gravity = {0, -9.81}, g1 = dt, g2 = dda.param("g2", 0.005), contact_law = law }
 local rock = m:rock{ density = 2600, E = 10e9, nu = 0.25 }

@@ -34,7 +34,8 @@ endforeach()
 # The 77-block jointed slope of issue 22 (contact transfer): stalled at
 # t = 0.13 s before vertices transferred past the corners of edges; the test
 # fails if any step cannot be completed. 0.5 s here, 5 s at both step sizes
-# as long tests.
+# as long tests, under the default contact law ("holding"; the script takes
+# --set law=shi for Shi's, which runs too: docs/contacts.md).
 dda_run_test(script.jointed_slope scripts 600 jointed_slope.lua --set t_end=0.5)
 foreach(dt 1e-3 1e-4)
   dda_run_test(script.jointed_slope_5s_dt${dt} long 3600 jointed_slope.lua --set t_end=5 --set dt=${dt})
