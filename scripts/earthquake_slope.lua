@@ -25,6 +25,7 @@
 --          (naming the contact), and still writes its outputs.
 -- Run:     build/dda run scripts/earthquake_slope.lua [--set base=rigid|compliant]
 --                   [--set t_end=12] [--set scale=1] [--set frames=0.1] [--set phi=40]
+--                   [--set law=shi] (the contact law; the engine's default when not set)
 --          Both bases, one after the other:
 --            for b in rigid compliant; do build/dda run scripts/earthquake_slope.lua --set base=$b --out out/slope_$b; done
 -- Writes:  out/slope_crest.csv, out/slope_face.csv, out/slope_toe.csv: time,
@@ -69,7 +70,8 @@ print(string.format("record: %s, %.1f s, PGA %.2f m/s^2 at %.2f s, PGV %.3f m/s,
                     record.pgd.value))
 
 m = dda.model{ plane = "strain", gravity = {0, -9.81}, g1 = dt, g2 = dda.param("g2", 0.005), gg = 1,
-                 g0 = dda.param("g0", 1e11), open_close_limit = dda.param("open_close_limit", 30) }
+                 g0 = dda.param("g0", 1e11), open_close_limit = dda.param("open_close_limit", 30),
+                 contact_law = dda.param("law", nil) }  -- nil: the engine's default ("holding")
 local rock = m:rock{ density = 2600, E = 10e9, nu = 0.25 }
 local bedrock = m:rock{ density = 2600, E = 2 * 1.25 * 2600 * 1200^2, nu = 0.25 }  -- Vs = 1200 m/s
 local joint = m:joint{ friction = dda.param("phi", 40) }   -- deg; the bedding (30 deg) yields at g tan(phi - 30)
