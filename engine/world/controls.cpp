@@ -101,11 +101,11 @@ const ControlSpec kControls[] = {
         "length of the model, no force through g0), and joints without cohesion or tension are unbonded "
         "from the start: a block that must hold on a slope holds, and one that slides does so at the "
         "closed-form rate, from Δt = 1e-2 to 1e-4 s; at smaller Δt a block's strain modes can chatter on its "
-        "contacts (at 1e-5 s a sliding block, and a 0.5 m block that must hold creeps; under `\"shi\"` too; "
-        "`strain_damping` or `friction_lag` cures it). `\"shi\"`: Shi's law as the engine had it before the "
-        "holding law, bit for bit: a contact that closes or locks again does so unloaded, and a block that "
-        "must stay on a slope creeps down it at small Δt; the paper's scripts pin it to reproduce the "
-        "paper's figures and the validation report (docs/contacts.md)"),
+        "contacts (at 1e-5 s a sliding block; a 0.5 m block that must hold, loaded at once, creeps; under "
+        "`\"shi\"` too; `strain_damping` or `friction_lag` cures it). `\"shi\"`: Shi's law as the engine "
+        "had it before the holding law, bit for bit: a contact that closes or locks again does so unloaded, "
+        "and a block that must stay on a slope creeps down it at small Δt; the paper's scripts pin it to "
+        "reproduce the paper's figures and the validation report (docs/contacts.md)"),
     number(
         "strain_damping", [](Controls& c) -> double& { return c.strain_damping; }, kZeroOffOrPositive,
         "s: Kelvin–Voigt damping of the blocks' strains, σ = E(ε + β·ε̇) with β this value: a damping ratio "
