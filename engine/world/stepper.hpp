@@ -48,6 +48,7 @@ class Stepper {
       solver_ = has_solver ? make_linear_solver(w.controls.solver) : nullptr;
       if (solver_) use_meshed_solver(solver_, w.blocks), solver_->load_state(ar);
       system_.set_contacts(static_cast<int>(w.blocks.count()), w.contacts);
+      open_close_.lagged_friction_held = true;  // the restored contacts may hold some
     } else if (solver_) {
       solver_->save_state(ar);
     }
