@@ -1,8 +1,18 @@
 #include "block/blocks.hpp"
 
+#include "block/displacement.hpp"
 #include "core/error.hpp"
 
 namespace dda {
+
+Mat6 block_tt(const Blocks& blocks, std::size_t b, MeshMass mesh_mass) {
+  if (mesh_mass == MeshMass::Consistent || !blocks.is_element(static_cast<BlockId>(b)))
+    return integrated_tt(blocks.area[b], blocks.sxx[b], blocks.syy[b], blocks.sxy[b]);
+  // An element is a triangle: its corner-lumped ∫TᵀT has the second moments
+  // × 4 (time_scheme.hpp).
+  const double f = element_moment_factor(mesh_mass);
+  return integrated_tt(blocks.area[b], f * blocks.sxx[b], f * blocks.syy[b], f * blocks.sxy[b]);
+}
 
 void check_edges(const Blocks& blocks, const std::vector<EdgeRef>& edges, const std::string& what) {
   if (edges.empty()) throw Error(msg(what, ": no edges given"));

@@ -8,7 +8,6 @@
 #include <string>
 #include <vector>
 
-#include "block/displacement.hpp"
 #include "block/time_scheme.hpp"
 #include "core/types.hpp"
 #include "geometry/block_polygons.hpp"
@@ -82,14 +81,7 @@ struct MaterialPoint {
 // ∫TᵀT dA of block b (its mass over the density, the time scheme's M/ρ):
 // exact for a first-order block, for an element of a meshed block as
 // `mesh_mass` says (MeshMass, block/time_scheme.hpp).
-inline Mat6 block_tt(const Blocks& blocks, std::size_t b, MeshMass mesh_mass) {
-  if (mesh_mass == MeshMass::Consistent || !blocks.is_element(static_cast<BlockId>(b)))
-    return integrated_tt(blocks.area[b], blocks.sxx[b], blocks.syy[b], blocks.sxy[b]);
-  // An element is a triangle: its corner-lumped ∫TᵀT has the second moments
-  // × 4 (time_scheme.hpp).
-  const double f = element_moment_factor(mesh_mass);
-  return integrated_tt(blocks.area[b], f * blocks.sxx[b], f * blocks.syy[b], f * blocks.sxy[b]);
-}
+Mat6 block_tt(const Blocks& blocks, std::size_t b, MeshMass mesh_mass);
 
 // Throws dda::Error, naming `what`, unless every edge exists (and there is one).
 void check_edges(const Blocks& blocks, const std::vector<EdgeRef>& edges, const std::string& what);
