@@ -17,9 +17,9 @@ namespace dda {
 // The blocks' terms are computed in parallel into `scratch` (the caller's,
 // kept from step to step: a step allocates nothing) and summed in block
 // order, the same bits for any thread count as one serial loop. The
-// contacts' terms are summed in one serial loop: on a memory-bound machine
-// computing them in parallel into a buffer and summing that in contact order
-// took longer (docs/performance.md).
+// contacts' terms are one serial loop, run beside the blocks' terms: on a
+// memory-bound machine computing them in parallel into a buffer and summing
+// that in contact order took longer (docs/performance.md).
 struct BlockEnergyTerms {
   double kinetic_before = 0, kinetic_after = 0, strain_before = 0, strain_after = 0, gravity = 0, damping = 0;
 };
