@@ -299,8 +299,12 @@ void keep_shear_references(std::span<Contact> contacts, const ContactLinearisati
       256);
 }
 
-void keep_lagged_friction(std::span<Contact> contacts, const OpenCloseState& s, const ContactParameters& p) {
+void keep_lagged_friction(std::span<Contact> contacts, OpenCloseState& s, const ContactParameters& p) {
   const bool lag = p.friction_lag > 0;
+  // Contacts found by a search start with none, and a carried contact keeps
+  // what it held: without the lag, a list cleared once stays clear.
+  if (!lag && !s.lagged_friction_held) return;
+  s.lagged_friction_held = lag;
   parallel_for_each(
       contacts.size(),
       [&](std::size_t i) {

@@ -54,6 +54,10 @@ struct OpenCloseState {
   int gross_passes = 0;                      // ... of them for a gross lag, not counted by the open-close limit
   bool free_pass = false;                    // the last check asked for such a solve
   std::vector<ContactIterationState> saved;  // at the start of the step, for a redo
+  // Whether a contact may hold a lagged friction force (keep_lagged_friction
+  // left one, or the contacts came from elsewhere: a checkpoint). Without
+  // friction_lag and with none held, the step has nothing to drop.
+  bool lagged_friction_held = true;
 };
 
 // The contacts' iteration state at the start of a step, and back to it.
@@ -94,7 +98,7 @@ void keep_shear_references(std::span<Contact> contacts, const ContactLinearisati
 // one, or one transferred to another edge) starts from its first N: a
 // strength it never had would let it hold where it must slide, and one from
 // zero would let a landing block slide frictionless for t_r. Without
-// friction_lag every contact holds none.
-void keep_lagged_friction(std::span<Contact> contacts, const OpenCloseState& s, const ContactParameters& p);
+// friction_lag every contact holds none (a pass only where one may hold one).
+void keep_lagged_friction(std::span<Contact> contacts, OpenCloseState& s, const ContactParameters& p);
 
 }  // namespace dda

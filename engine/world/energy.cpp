@@ -3,6 +3,7 @@
 #include <cmath>
 #include <vector>
 
+#include <tbb/parallel_invoke.h>
 #include <Eigen/LU>
 
 #include "assembly/block_terms.hpp"
@@ -21,16 +22,21 @@ struct BlockEnergy {
 };
 
 BlockEnergy block_energy(const Blocks& blocks, const VecX& d, const TimeScheme& scheme, std::span<const Mat3> elastic,
-                         const Vec2& gravity, double strain_damping, std::vector<BlockEnergyTerms>& per_block) {
-  // Each block's terms in parallel, then summed in block order: the same
-  // bits as one serial loop, for any thread count.
+                         const Vec2& gravity, double strain_damping, EnergyScratch& scratch) {
+  // Each material's compliance once (the same inverse every block of it
+  // took), each block's terms in parallel, then summed in block order: the
+  // same bits as one serial loop, for any thread count.
+  std::vector<Mat3>& compliance = scratch.compliance;
+  compliance.resize(elastic.size());
+  for (std::size_t m = 0; m < elastic.size(); ++m) compliance[m] = elastic[m].inverse();
+  std::vector<BlockEnergyTerms>& per_block = scratch.blocks;
   per_block.resize(blocks.count());
   parallel_for_each(blocks.count(), [&](std::size_t b) {
     const Vec6 db = d.segment<6>(6 * b);
     const BlockState s = blocks.scheme_state(static_cast<BlockId>(b));
     const Mat6 mass = (blocks.mass[b] / blocks.area[b]) * block_tt(blocks, b, scheme.mesh_mass);
     const Vec6 v1 = scheme.end_velocity(db, s);
-    const Mat3 c = elastic[blocks.material[b]].inverse();
+    const Mat3& c = compliance[blocks.material[b]];
     const Vec3 before = blocks.stress[b], after = before + elastic[blocks.material[b]] * db.tail<3>();
     BlockEnergyTerms& t = per_block[b];
     t.kinetic_before = 0.5 * s.velocity.dot(mass * s.velocity);
@@ -91,10 +97,16 @@ ContactEnergy contact_energy(std::span<const Contact> contacts, const ContactLin
 
 void account_step_energy(WorldState& w, const VecX& d, const TimeScheme& scheme, std::span<const Mat3> elastic,
                          const ContactLinearisation& lin, const ContactParameters& contact_law, double fixed_spring,
-                         std::vector<BlockEnergyTerms>& per_block) {
-  const BlockEnergy blocks =
-      block_energy(w.blocks, d, scheme, elastic, w.controls.gravity, w.controls.strain_damping, per_block);
-  const ContactEnergy contacts = contact_energy(w.contacts, lin, d, contact_law);
+                         EnergyScratch& scratch) {
+  // The contacts' serial sum runs beside the blocks' parallel terms (each
+  // result its own, so the same bits): the step waits for the longer only.
+  BlockEnergy blocks;
+  ContactEnergy contacts;
+  tbb::parallel_invoke(
+      [&] {
+        blocks = block_energy(w.blocks, d, scheme, elastic, w.controls.gravity, w.controls.strain_damping, scratch);
+      },
+      [&] { contacts = contact_energy(w.contacts, lin, d, contact_law); });
   const Loads::Work loads = w.loads.step_work(w.blocks, d);
   const Boundaries::Work bounds = w.boundaries.step_work(w.time, w.time + w.dt, fixed_spring, w.blocks, d, scheme);
 

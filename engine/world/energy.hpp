@@ -14,14 +14,21 @@ namespace dda {
 // before and after d (the end-of-step velocity from the time scheme), the
 // contacts' forces from the last check, the loads' and boundaries' work.
 // `elastic` per rock material, `fixed_spring` = fixed_point_factor × g0.
-// The blocks' terms are computed in parallel into `per_block` (the caller's,
+// The blocks' terms are computed in parallel into `scratch` (the caller's,
 // kept from step to step: a step allocates nothing) and summed in block
-// order, the same bits for any thread count.
+// order, the same bits for any thread count as one serial loop. The
+// contacts' terms are one serial loop, run beside the blocks' terms: on a
+// memory-bound machine computing them in parallel into a buffer and summing
+// that in contact order took longer (docs/performance.md).
 struct BlockEnergyTerms {
   double kinetic_before = 0, kinetic_after = 0, strain_before = 0, strain_after = 0, gravity = 0, damping = 0;
 };
+struct EnergyScratch {
+  std::vector<BlockEnergyTerms> blocks;  // per block
+  std::vector<Mat3> compliance;          // per rock material: the elastic matrix's inverse
+};
 void account_step_energy(WorldState& w, const VecX& d, const TimeScheme& scheme, std::span<const Mat3> elastic,
                          const ContactLinearisation& lin, const ContactParameters& contact_law, double fixed_spring,
-                         std::vector<BlockEnergyTerms>& per_block);
+                         EnergyScratch& scratch);
 
 }  // namespace dda

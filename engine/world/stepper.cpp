@@ -406,7 +406,7 @@ void Stepper::control_step(WorldState& w, Rejection r) {
 void Stepper::update(WorldState& w) {
   StageTimer timer(stats_.profile, Stage::Update);
   account_step_energy(w, solution_, scheme_, elastic_, linearisation_, contact_law_,
-                      w.controls.fixed_point_factor * g0_, block_energy_);
+                      w.controls.fixed_point_factor * g0_, energy_scratch_);
   const Blocks& blocks = w.blocks;
   w.loads.move_points(blocks, solution_);
   w.boundaries.update(blocks, solution_, scheme_);

@@ -48,6 +48,7 @@ class Stepper {
       solver_ = has_solver ? make_linear_solver(w.controls.solver) : nullptr;
       if (solver_) use_meshed_solver(solver_, w.blocks), solver_->load_state(ar);
       system_.set_contacts(static_cast<int>(w.blocks.count()), w.contacts);
+      open_close_.lagged_friction_held = true;  // the restored contacts may hold some
     } else if (solver_) {
       solver_->save_state(ar);
     }
@@ -91,11 +92,11 @@ class Stepper {
   std::unique_ptr<LinearSolver> solver_;
   BlockTerms own_;  // per block
   VecX rhs_, solution_;
-  std::vector<char> row_reassembled_;           // per block row: rewritten by the last assembly
-  std::vector<char> block_inverted_;            // per block (check_block_motion's scratch)
-  std::vector<Vec2> vertex_motion_;             // per vertex: the last checked solve's motion
-  std::vector<BlockEnergyTerms> block_energy_;  // per block (account_step_energy's scratch)
-  MotionCheck motion_;                          // of the last attempt that got to its motion checks
+  std::vector<char> row_reassembled_;  // per block row: rewritten by the last assembly
+  std::vector<char> block_inverted_;   // per block (check_block_motion's scratch)
+  std::vector<Vec2> vertex_motion_;    // per vertex: the last checked solve's motion
+  EnergyScratch energy_scratch_;       // account_step_energy's per-block terms
+  MotionCheck motion_;                 // of the last attempt that got to its motion checks
 
   StepStats stats_;  // of the step under way
 };
