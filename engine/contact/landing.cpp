@@ -98,6 +98,27 @@ int LandingLaw::resolve(const Blocks& blocks, std::span<Contact> contacts, const
     l.approach = approach;
     candidates_.push_back(l);
   }
+  // A free block held by another closed contact as well (a block in a
+  // packed mass, or resting on a corner) is confined: its landings are left
+  // to the springs. The correction moves a block against its landing
+  // contacts only, and a confined block, moved into its other contacts, is
+  // thrown back by their springs: in blast(2) and a jointed slope that made
+  // energy (docs/contacts.md).
+  if (!candidates_.empty()) {
+    confined_.assign(blocks.count(), 0);
+    std::size_t next = 0;
+    for (std::size_t i = 0; i < contacts.size(); ++i) {
+      while (next < candidates_.size() && static_cast<std::size_t>(candidates_[next].contact) < i) ++next;
+      const bool candidate = next < candidates_.size() && static_cast<std::size_t>(candidates_[next].contact) == i;
+      const Contact& c = contacts[i];
+      if (candidate || c.state == ContactState::Open) continue;
+      confined_[c.vblock] = confined_[c.eblock] = 1;
+    }
+    std::erase_if(candidates_, [&](const Landing& l) {
+      const Contact& c = contacts[l.contact];
+      return (!held[c.vblock] && confined_[c.vblock]) || (!held[c.eblock] && confined_[c.eblock]);
+    });
+  }
   // Those the solve closed land. The step without their forces, N·Jnᵀ +
   // S·Jtᵀ at the step's end, taken out of each block's own system (own: its
   // elasticity, inertia and loads; exact for a block whose only closed

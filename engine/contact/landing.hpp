@@ -14,7 +14,9 @@
 // What: after the accepted solve (in Update only: a step cut and redone
 // finds nothing changed), for the contacts that land in the step (open at
 // its start, approaching then faster than landing_speed_threshold, and
-// closed by the solve, or taken in by the step without the landing forces):
+// closed by the solve, or taken in by the step without the landing forces;
+// a free block that another closed contact holds as well is confined, and
+// its landings are left to the springs):
 //   * the step without the landing contacts: their forces at the step's end
 //     taken out of each block's own system (its elasticity, inertia and
 //     loads), d_pre = d + K_own⁻¹·(N·Jnᵀ + S·Jtᵀ): the blocks' motion as if
@@ -140,6 +142,7 @@ class LandingLaw {
   std::vector<Landing> candidates_, landings_;
   std::vector<Slot> slots_;
   std::vector<int> slot_index_;  // per block: its slot, -1 none
+  std::vector<char> confined_;   // per block: a closed contact that does not land holds it
   ImpactEnergy energy_;
 };
 

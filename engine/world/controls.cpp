@@ -132,7 +132,8 @@ const ControlSpec kControls[] = {
     number(
         "restitution", [](Controls& c) -> double& { return c.restitution; }, kOffOrUnitInterval,
         "the landing law: a contact that lands (open at the step's start and approaching faster than 2·g·max(Δt, "
-        "its slowest ring), closed by the step) ends the step as a rigid-body impact with this coefficient of "
+        "its slowest ring), closed by the step, its blocks held by no other closed contact) ends the step as a "
+        "rigid-body impact with this coefficient of "
         "restitution e in [0, 1] would end it: it leaves at e times its approach speed (at 0 it stays on the "
         "face), its contact point stops if Coulomb's bound μ·(normal impulse) allows, else slides with that "
         "impulse, the same at every Δt. -1: off, the penalty springs' bounce (about 0.76 at Δt = 1e-3 s, another "

@@ -235,11 +235,11 @@ TEST(Landing, BlockPutDownOnAFaceDoesNotLand) {
     }
 }
 
-// Blocks landing on blocks: three blocks dropped onto the base and onto each
-// other (e = 0.3, φ = 30°) give the same bits with 1 and 2 threads (the
-// impacts are solved serially, in the contact list's order), and a run
-// restored from a checkpoint taken mid-way (after the first landings)
-// continues bit for bit.
+// Blocks landing on the base and on each other: three blocks dropped
+// (e = 0.3, φ = 30°; landings of a block another contact holds are left to
+// the springs) give the same bits with 1 and 2 threads (the impacts are
+// solved serially, in the contact list's order), and a run restored from a
+// checkpoint taken mid-way (after the first landings) continues bit for bit.
 struct Pile {
   World w;
   explicit Pile(int threads) {
