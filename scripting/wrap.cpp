@@ -338,6 +338,7 @@ void push_stats(lua_State* L, const StepStats& s) {
   lua_pushboolean(L, s.contacts_searched);
   lua_setfield(L, -2, "contacts_searched");
   num("max_displacement_ratio", s.max_displacement_ratio);
+  integer("landings", s.landings);
   // Seconds per stage of the step (Stage, world/step_profile.hpp): t_detect, ...
   for (int k = 0; k < kStageCount; ++k) num(("t_" + std::string(kStageKeys[k])).c_str(), s.profile.seconds[k]);
   num("t_total", s.profile.total);

@@ -511,8 +511,8 @@ void register_model(lua_State* L) {
        "...}"},
       {"energy", guarded<m_energy>,
        "m:energy() → the energy budget (J/m): {kinetic, strain, contact (held now), gravity, point_loads, "
-       "pressure, targets, fixed_points, viscous, spring_boundaries, friction (work on the blocks since the first "
-       "step), residual (held change − work), step = {the same for the last step}}"},
+       "pressure, targets, fixed_points, viscous, spring_boundaries, friction, impact (work on the blocks since the "
+       "first step), residual (held change − work), step = {the same for the last step}}"},
       {"totals", guarded<m_totals>,
        "m:totals() → {steps, step_cuts, open_close_iterations, cg_iterations, wall_seconds, steps_per_second}"},
       {"hash", guarded<m_hash>, "m:hash() → a hex hash of the whole state (the same for any thread count)"},

@@ -151,6 +151,21 @@ struct TimeScheme {
     return e;
   }
 
+  // The state at the end of the step when the landing law (an impact,
+  // contact/landing.hpp) replaced the velocity end_state would give by v1:
+  // Shi's scheme only, whose one state is the velocity (the step's constant
+  // acceleration and its force follow from v1 as in end_state). The
+  // second-order schemes' acceleration follows from d, and an impact that
+  // changes v1 but not d would break a₁ = (d − Δt·v₀ − …)/(βΔt²): the
+  // landing law refuses them.
+  BlockEndState end_state_after_impact(const Vec6& v1, const BlockState& s, const Mat6& mass) const {
+    BlockEndState e;
+    e.velocity = v1;
+    e.acceleration = (v1 - gg * s.velocity) / dt;
+    e.out_of_balance = mass * e.acceleration;
+    return e;
+  }
+
   // The warm start: the displacement the last step's motion extrapolates to.
   // Shi: its acceleration held, a = (v·Δt_last − d_last)·2/Δt_last² (with
   // v = 2·d_last/Δt_last − gg·v_before), so gg·v·Δt + a·Δt²/2; at

@@ -321,6 +321,13 @@ Boundaries::Work Boundaries::step_work(double t0, double t_end, double stiff_spr
   return w;
 }
 
+std::vector<char> Boundaries::held_blocks(std::size_t count) const {
+  std::vector<char> held(count, 0);
+  for (const FixedPoint& f : fixed_points_) held[f.block] = 1;
+  for (const DisplacementTarget& t : targets_) held[t.block] = 1;
+  return held;
+}
+
 void Boundaries::update(const Blocks& blocks, const VecX& d_all, const TimeScheme& scheme) {
   auto d_of = [&](BlockId b) -> Vec6 { return d_all.segment<6>(6 * b); };
   auto moved = [&](BlockId b, const Vec2& p) { return point_displacement(p, blocks.centroid[b], d_of(b)); };

@@ -78,6 +78,9 @@ class Boundaries {
   };
   Work step_work(double t0, double t_end, double stiff_spring, const Blocks& blocks, const VecX& d,
                  const TimeScheme& scheme) const;
+  // Per block (of `count`): 1 where a fixed point or a displacement target
+  // holds it (the landing law's immovable blocks, contact/landing.hpp).
+  std::vector<char> held_blocks(std::size_t count) const;
 
   // What a checkpoint holds (core/archive.hpp): every point with its state.
   template <class Archive>

@@ -67,6 +67,9 @@ struct ContactIterate {
   // contact with no lagged force yet (friction_normal below).
   double lag_start = 0;
   double lag_weight = 1;
+  // The normal force the last solve's friction used (the landing law,
+  // contact/landing.hpp, takes that solve's forces out of the step).
+  double solved_normal = 0;
 };
 
 // The normal force a contact's friction strength acts with when its normal

@@ -189,6 +189,7 @@ bool check_contact_states(std::span<Contact> contacts, const ContactLinearisatio
     const double tan_phi = p.tan_friction[c.joint];
     const ContactState before = c.state;
     const double solved_with = s.iterate[i].normal_force;  // the N this solve's friction used
+    s.iterate[i].solved_normal = solved_with;
     bool changed = update_contact_state(c, s.iterate[i], p.joints[c.joint], tan_phi, springs, m, p.law);
     // Friction consistent with the normal force of the accepted solution: a
     // contact that slid through the solve with the N of the solve before (or

@@ -20,6 +20,7 @@ constexpr ControlRange kFraction{0, 1, false, true, "must lie in [0, 1)"};
 constexpr ControlRange kAtLeastOne{1, kInf, false, false, "must be at least 1"};
 constexpr ControlRange kZeroOffOrPositive{0, kInf, false, false, "must be zero (off) or positive"};
 constexpr ControlRange kZeroAutomaticOrPositive{0, kInf, false, false, "must be zero (automatic) or positive"};
+constexpr ControlRange kOffOrUnitInterval{-1, 1, false, false, "must be -1 (off) or lie in [0, 1]", true};
 constexpr ControlRange kZeroEveryCoreOrPositive{0, kInf, false, false, "must be zero (every core) or positive"};
 
 constexpr const char* kPlaneNames[] = {"stress", "strain"};                            // PlaneMode order
@@ -128,6 +129,16 @@ const ControlSpec kControls[] = {
         "untouched. Not yet the default: a block landing or loaded at "
         "once slides further while its friction builds up (`docs/contacts.md`)",
         "0 (off)"),
+    number(
+        "restitution", [](Controls& c) -> double& { return c.restitution; }, kOffOrUnitInterval,
+        "the landing law: a contact that lands (open at the step's start and approaching faster than 2·g·max(Δt, "
+        "its slowest ring), closed by the step, its blocks held by no other closed contact) ends the step as a "
+        "rigid-body impact with this coefficient of "
+        "restitution e in [0, 1] would end it: it leaves at e times its approach speed (at 0 it stays on the "
+        "face), its contact point stops if Coulomb's bound μ·(normal impulse) allows, else slides with that "
+        "impulse, the same at every Δt. -1: off, the penalty springs' bounce (about 0.76 at Δt = 1e-3 s, another "
+        "at each Δt). Integrator `\"shi\"` and first-order blocks only (`docs/contacts.md`, \"Landings\")",
+        "-1 (off)"),
     number(
         "contact_range", [](Controls& c) -> double& { return c.contact_range; }, kZeroOrPositive,
         "m: blocks closer than this at the start of a step are in contact; a step in which a vertex moves"

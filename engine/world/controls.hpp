@@ -65,6 +65,10 @@ struct Controls {
   // default). It keeps a block sliding at small Δt from chattering without
   // damping waves (docs/contacts.md).
   double friction_lag = 0;
+  // The landing law (contact/landing.hpp): a contact that lands ends its
+  // step as a rigid-body impact with this coefficient of restitution e,
+  // 0 ≤ e ≤ 1; −1: off (the default), the penalty springs' bounce.
+  double restitution = -1;
   double contact_range = 0;  // m; 0 → automatic (contact/contact_detection.hpp)
   // Element size (m) of the meshes of blocks added from now on whose rock
   // material gives none; 0: first-order blocks (block/mesh.hpp).
@@ -103,7 +107,10 @@ struct ControlRange {
   double min = -1e308, max = 1e308;
   bool min_open = false, max_open = false;  // min < v (else min ≤ v); v < max (else v ≤ max)
   const char* rule = "";
-  bool admits(double v) const { return (min_open ? v > min : v >= min) && (max_open ? v < max : v <= max); }
+  bool min_is_off = false;  // min means "off", and the values between it and 0 are refused
+  bool admits(double v) const {
+    return (min_open ? v > min : v >= min) && (max_open ? v < max : v <= max) && !(min_is_off && v > min && v < 0);
+  }
 };
 
 struct ControlSpec {

@@ -143,4 +143,25 @@ void account_step_energy(WorldState& w, const VecX& d, const TimeScheme& scheme,
   w.energy.started = true;
 }
 
+void account_impact_energy(EnergyBudget& energy, const ImpactEnergy& impact, const Boundaries::Work& solved,
+                           const Boundaries::Work& landed) {
+  const Boundaries::Work moved{landed.fixed_points - solved.fixed_points, landed.targets - solved.targets,
+                               landed.viscous - solved.viscous, landed.springs - solved.springs};
+  const double boundaries = moved.fixed_points + moved.targets + moved.viscous + moved.springs;
+  for (EnergyTerms* t : {&energy.last_step, &energy.total}) {
+    t->kinetic += impact.kinetic;
+    t->strain += impact.strain;
+    t->contact += impact.contact;
+    t->gravity += impact.gravity;
+    t->friction -= impact.friction;
+    t->fixed_points += moved.fixed_points;
+    t->targets += moved.targets;
+    t->viscous += moved.viscous;
+    t->spring_boundaries += moved.springs;
+    t->residual -= impact.from_solve + boundaries - impact.friction;
+  }
+  energy.last_step.impact = impact.work();
+  energy.total.impact += impact.work();
+}
+
 }  // namespace dda

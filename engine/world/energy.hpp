@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "contact/contact_detection.hpp"
+#include "contact/landing.hpp"
 #include "contact/open_close.hpp"
 #include "world/world_state.hpp"
 
@@ -30,5 +31,14 @@ struct EnergyScratch {
 void account_step_energy(WorldState& w, const VecX& d, const TimeScheme& scheme, std::span<const Mat3> elastic,
                          const ContactLinearisation& lin, const ContactParameters& contact_law, double fixed_spring,
                          EnergyScratch& scratch);
+
+// After account_step_energy, the landing law's impacts of the step
+// (contact/landing.hpp): the held energy and the work of gravity, friction
+// and the boundaries (`solved`: over the accepted solve; `landed`: over the
+// step the law made of it) move to the step's end as the law left it, the
+// impact term takes what the impacts changed, and the residual loses what
+// the solve's landing springs had put in it: it stays the time integrator's.
+void account_impact_energy(EnergyBudget& energy, const ImpactEnergy& impact, const Boundaries::Work& solved,
+                           const Boundaries::Work& landed);
 
 }  // namespace dda

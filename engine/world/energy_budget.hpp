@@ -17,6 +17,7 @@ struct EnergyTerms {
   double viscous = 0;            // VBC dashpots and the strains' damping (≤ 0: absorbed)
   double spring_boundaries = 0;  // SBC springs (≤ 0)
   double friction = 0;           // sliding contacts (≤ 0: dissipated)
+  double impact = 0;             // the landing law's impacts (≤ 0 for e ≤ 1: what they took)
   // (held now − held before) − work: energy the time integrator (and the
   // contacts' state changes) made (> 0) or dissipated (< 0).
   double residual = 0;
@@ -24,12 +25,12 @@ struct EnergyTerms {
   template <class Archive>
   void fields(Archive& ar) {
     ar(kinetic, strain, contact, gravity, point_loads, pressure, targets, fixed_points, viscous, spring_boundaries,
-       friction, residual);
+       friction, impact, residual);
   }
 
   double held() const { return kinetic + strain + contact; }
   double work() const {
-    return gravity + point_loads + pressure + targets + fixed_points + viscous + spring_boundaries + friction;
+    return gravity + point_loads + pressure + targets + fixed_points + viscous + spring_boundaries + friction + impact;
   }
 };
 
@@ -45,7 +46,8 @@ inline constexpr EnergyTermName kEnergyTerms[] = {
     {"point_loads", &EnergyTerms::point_loads}, {"pressure", &EnergyTerms::pressure},
     {"targets", &EnergyTerms::targets},         {"fixed_points", &EnergyTerms::fixed_points},
     {"viscous", &EnergyTerms::viscous},         {"spring_boundaries", &EnergyTerms::spring_boundaries},
-    {"friction", &EnergyTerms::friction},       {"residual", &EnergyTerms::residual},
+    {"friction", &EnergyTerms::friction},       {"impact", &EnergyTerms::impact},
+    {"residual", &EnergyTerms::residual},
 };
 
 struct EnergyBudget {

@@ -57,6 +57,7 @@ struct StepStats {
   int closed_contacts = 0;
   bool contacts_searched = false;     // a full contact search ran (else the list was reused)
   double max_displacement_ratio = 0;  // largest vertex displacement / (g2 bound)
+  int landings = 0;                   // contacts the landing law (restitution) resolved in the step
   StepProfile profile;
 
   // What a checkpoint holds (core/archive.hpp): the counts, which choose the

@@ -19,9 +19,10 @@
 //   │  └─ ControlStep        block/motion: g2 bound, contact range, inverted
 //   │                        blocks, penetration → accept, or cut Δt (or widen
 //   │                        the contact range) and redo (step_control.hpp)
-//   └─ Update                the energy budget (world/energy.cpp); block/motion,
-//                            loading/, boundary/, contacts; Δt grows back
-//                            after a clean step
+//   └─ Update                the energy budget (world/energy.cpp); the landing
+//                            law's impacts (contact/landing.hpp, opt-in);
+//                            block/motion, loading/, boundary/, contacts; Δt
+//                            grows back after a clean step
 //
 // Each stage is timed into StepStats::profile (step_profile.hpp). Where the
 // next changes land:
@@ -137,6 +138,7 @@ void Stepper::begin_step(WorldState& w) {
   validate_controls(w.controls);
   for (int r = 0; r < static_cast<int>(w.rocks.size()); ++r) validate(w.rocks[r], r);
   for (int j = 0; j < static_cast<int>(w.joints.size()); ++j) validate(w.joints[j], j);
+  validate_landing_law(w.controls.restitution, w.controls.integrator, w.blocks);
   derive_automatic_controls(w);
   set_up_threads(w.controls);
   derive_material_constants(w);
@@ -407,16 +409,38 @@ void Stepper::update(WorldState& w) {
   StageTimer timer(stats_.profile, Stage::Update);
   account_step_energy(w, solution_, scheme_, elastic_, linearisation_, contact_law_,
                       w.controls.fixed_point_factor * g0_, energy_scratch_);
+  land(w);
   const Blocks& blocks = w.blocks;
   w.loads.move_points(blocks, solution_);
   w.boundaries.update(blocks, solution_, scheme_);
   move_material_points(w.tracked, blocks, solution_);
   move_blocks(w.blocks, solution_, vertex_motion_, elastic_, scheme_);
+  landing_.write_end_states(w.blocks);
   detection_.add_rotations(solution_);
   keep_shear_references(w.contacts, linearisation_, open_close_, contact_law_);
+  landing_.unload_shear_springs(w.contacts, linearisation_, open_close_, contact_law_.law);
   keep_lagged_friction(w.contacts, open_close_, contact_law_);
   w.time += w.dt;
   ++w.steps;
+}
+
+// The landing law (control restitution, off at -1): the contacts that land
+// in the accepted step end it as a rigid-body impact would end them; the
+// step's displacement and its blocks' motion change with it, and the energy
+// budget books what the impacts took.
+void Stepper::land(WorldState& w) {
+  const Controls& c = w.controls;
+  if (c.restitution >= 0) solved_ = solution_;
+  stats_.landings =
+      landing_.resolve(w.blocks, w.contacts, linearisation_, open_close_, contact_law_, scheme_, own_, elastic_,
+                       c.restitution < 0 ? std::vector<char>() : w.boundaries.held_blocks(w.blocks.count()), c.gravity,
+                       c.restitution, solution_);
+  if (stats_.landings == 0) return;
+  const double spring = c.fixed_point_factor * g0_, t_end = w.time + w.dt;
+  const Boundaries::Work solved = w.boundaries.step_work(w.time, t_end, spring, w.blocks, solved_, scheme_);
+  const Boundaries::Work landed = w.boundaries.step_work(w.time, t_end, spring, w.blocks, solution_, scheme_);
+  account_impact_energy(w.energy, landing_.energy(), solved, landed);
+  check_block_motion(w.blocks, solution_, block_inverted_, vertex_motion_);
 }
 
 // The step's figures; after a clean step Δt grows back towards g1.

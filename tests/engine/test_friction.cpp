@@ -483,7 +483,9 @@ TEST(Friction, BlockLandingFromAMicrometreSlidesFromItsFirstStep) {
 // bounces (the penalty springs' restitution) and the block rocks on a
 // corner; dropped from 0.98, 0.99, 1.01 or 1.02 m it ends 0.06 to 0.77 m
 // back under either law, and harder landings are thrown back too
-// (docs/contacts.md, Known limits, "A hard landing on a rough face").
+// (docs/contacts.md, Known limits, "A hard landing on a rough face"). With
+// the landing law (restitution = 0) every height ends where it lands:
+// tests/engine/test_landing.cpp.
 TEST(Friction, BlockLandingOnAFlatFaceFromOneMetreEndsWhereItLands) {
   for (const ContactLaw law : {ContactLaw::Holding, ContactLaw::Shi}) {
     World w;
