@@ -94,13 +94,13 @@ class Stepper {
   std::unique_ptr<LinearSolver> solver_;
   BlockTerms own_;  // per block
   VecX rhs_, solution_;
-  VecX solved_;                          // the accepted solve, before the landing law changed it
-  std::vector<char> row_reassembled_;    // per block row: rewritten by the last assembly
-  std::vector<char> block_inverted_;     // per block (check_block_motion's scratch)
-  std::vector<Vec2> vertex_motion_;      // per vertex: the last checked solve's motion
-  EnergyScratch energy_scratch_;         // account_step_energy's per-block terms
-  LandingLaw landing_;                   // the landing law's impacts of the step (contact/landing.hpp)
-  MotionCheck motion_;                   // of the last attempt that got to its motion checks
+  VecX solved_;                        // the accepted solve, before the landing law changed it
+  std::vector<char> row_reassembled_;  // per block row: rewritten by the last assembly
+  std::vector<char> block_inverted_;   // per block (check_block_motion's scratch)
+  std::vector<Vec2> vertex_motion_;    // per vertex: the last checked solve's motion
+  EnergyScratch energy_scratch_;       // account_step_energy's per-block terms
+  LandingLaw landing_;                 // the landing law's impacts of the step (contact/landing.hpp)
+  MotionCheck motion_;                 // of the last attempt that got to its motion checks
 
   StepStats stats_;  // of the step under way
 };
