@@ -33,8 +33,8 @@ namespace dda {
 
 // 1: the first format. 2: the contact search's watched aligned edges. 3: the
 // contacts' lagged friction normal force (friction_lag). 4: the meshed
-// solver's kept factors.
-inline constexpr std::uint32_t kCheckpointFormat = 4;
+// solver's kept factors. 5: the age of the contacts' lagged friction.
+inline constexpr std::uint32_t kCheckpointFormat = 5;
 
 // The World's state and `extra` (bytes its owner keeps beside it: the Lua
 // layer's loads and monitors), as a checkpoint file's bytes.
