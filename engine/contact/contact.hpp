@@ -41,11 +41,14 @@ struct Contact {
   std::int8_t slide_sign = 0;
   // Friction that lags the normal force (control friction_lag): the normal
   // force N_f the contact's friction strength acted with at the end of the
-  // last accepted step; N_f follows N as dN_f/dt = (N − N_f)/t_r. Valid
-  // (friction_lagged) while the contact has stayed closed since an accepted
-  // step; a contact that closes starts from its first N (open_close.hpp).
+  // last accepted step, the mean of its N over its memory t_r; and its
+  // memory's age (s): > 0, how long the interface has been closed (N_f
+  // averages only the N it has carried since; infinite once it closed again
+  // after a brief opening: the same interface, its memory full); < 0, open
+  // for that long after being closed, briefly so far; 0: none (open for
+  // longer, never closed, or no friction_lag). open_close.hpp.
   double friction_normal = 0;
-  bool friction_lagged = false;
+  double friction_age = 0;
 
   // Results of the last converged solve (compression positive), for callers.
   double normal_force = 0;  // N (per unit thickness)
@@ -56,7 +59,7 @@ struct Contact {
   template <class Archive>
   void fields(Archive& ar) {
     ar(vblock, eblock, vertex, edge, joint, state, intact, length, scale, ref_param, ref_valid, slide_sign,
-       friction_normal, friction_lagged, normal_force, shear_force, penetration);
+       friction_normal, friction_age, normal_force, shear_force, penetration);
   }
 };
 
@@ -66,15 +69,14 @@ struct Contact {
 // The shear force and penetration are left out: every solve recomputes them
 // before anyone reads them.
 struct ContactIterationState {
-  double ref_param, normal_force, friction_normal;
+  double ref_param, normal_force, friction_normal, friction_age;
   ContactState state;
-  bool intact, ref_valid, friction_lagged;
+  bool intact, ref_valid;
   std::int8_t slide_sign;
 };
 
 inline ContactIterationState iteration_state(const Contact& c) {
-  return {c.ref_param, c.normal_force, c.friction_normal, c.state,
-          c.intact,    c.ref_valid,    c.friction_lagged, c.slide_sign};
+  return {c.ref_param, c.normal_force, c.friction_normal, c.friction_age, c.state, c.intact, c.ref_valid, c.slide_sign};
 }
 
 inline void set_iteration_state(Contact& c, const ContactIterationState& s) {
@@ -85,7 +87,7 @@ inline void set_iteration_state(Contact& c, const ContactIterationState& s) {
   c.ref_valid = s.ref_valid;
   c.slide_sign = s.slide_sign;
   c.friction_normal = s.friction_normal;
-  c.friction_lagged = s.friction_lagged;
+  c.friction_age = s.friction_age;
 }
 
 inline bool same_identity(const Contact& a, const Contact& b) {

@@ -2,6 +2,7 @@
 // Contact mechanics: the linearised penetration and shear of a vertex-edge
 // contact (Shi 1988), the springs they carry, and the Mohr-Coulomb open /
 // sliding / locked decision of the open-close iteration.
+#include <cmath>
 #include <span>
 
 #include "contact/contact.hpp"
@@ -63,7 +64,7 @@ struct ContactIterate {
   bool closed_at_start = false;
   // Friction that lags the normal force (control friction_lag): the lagged
   // normal force at the step start, N_f0, and the step's weight of the new
-  // N, w = 1 − exp(−Δt/t_r); w = 1 (no lag) without friction_lag and for a
+  // N (lag_weight below); w = 1 (no lag) without friction_lag and for a
   // contact with no lagged force yet (friction_normal below).
   double lag_start = 0;
   double lag_weight = 1;
@@ -72,13 +73,31 @@ struct ContactIterate {
   double solved_normal = 0;
 };
 
+// The weight of a step's N in the lagged friction normal force N_f of a
+// contact whose memory is `age` old (s: how long it has been closed) at the
+// step's start, over a step dt, lag t_r: N_f is the mean of the N the
+// interface has carried, each instant weighted by exp(−(its age)/t_r), and
+// the weights normalised over the interface's life only, since a landing is a
+// new interface with no normal-force history before it closed:
+//   w = (1 − exp(−dt/t_r)) / (1 − exp(−(age + dt)/t_r)),
+// the exact step of that mean with N held over the step. A new contact
+// (age 0) takes its first N (w = 1); while age ≪ t_r, N_f is the running
+// mean of N since it closed (w ≈ dt/(age + dt)); once age ≫ t_r, the
+// simplified Prakash–Clifton law dN_f/dt = (N − N_f)/t_r stepped exactly
+// (w = 1 − exp(−dt/t_r); age infinite: an interface that closed again after a
+// brief opening, keep_lagged_friction). At dt ≫ t_r, w = 1 to the last bit:
+// no lag.
+inline double lag_weight(double dt, double age, double t_r) {
+  return std::expm1(-dt / t_r) / std::expm1(-(age + dt) / t_r);
+}
+
 // The normal force a contact's friction strength acts with when its normal
 // force at the step's end is n (compression positive): max(0, n), or with
-// friction_lag the lagged N_f = N_f0 + w·(max(0, n) − N_f0), the exact step
-// of dN_f/dt = (N − N_f)/t_r with N held at its end-of-step value (the
-// simplified Prakash–Clifton law, Ranjith and Rice 2001): stable for every
-// Δt/t_r, today's max(0, n) once Δt ≫ t_r (w = 1), and N itself in steady
-// sliding. Every friction decision and force takes its N from here.
+// friction_lag the lagged N_f = N_f0 + w·(max(0, n) − N_f0), w from
+// lag_weight above (the simplified Prakash–Clifton law, Ranjith and Rice
+// 2001, over the interface's own life): stable for every Δt/t_r, today's
+// max(0, n) once Δt ≫ t_r (w = 1), and N itself in steady sliding. Every
+// friction decision and force takes its N from here.
 inline double friction_normal(const ContactIterate& it, double n) {
   const double now = n > 0 ? n : 0.0;
   return it.lag_weight == 1 ? now : it.lag_start + it.lag_weight * (now - it.lag_start);

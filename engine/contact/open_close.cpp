@@ -20,22 +20,34 @@ void restore_contact_states(std::span<Contact> contacts, const OpenCloseState& s
       contacts.size(), [&](std::size_t i) { set_iteration_state(contacts[i], s.saved[i]); }, 1024);
 }
 
+namespace {
+// Friction that lags the normal force: a contact that closes again within
+// this share of t_r after it opened is the same interface, whose strength
+// keeps the full memory t_r (the lag as if it had never opened, from its
+// first N); one open for longer is a new interface, whose strength is the
+// mean of the N it carries since it closed (lag_weight, contact_law.hpp).
+// 60° on 45° with gravity on at once at Δt = 1e-5 s chatters with every
+// re-closing a new interface (or at 0.1 t_r), and two landings that rock
+// move at 1 t_r (docs/contacts.md, Tried and not kept).
+constexpr double kSameInterface = 0.3;
+}  // namespace
+
 void start_open_close(std::span<const Contact> contacts, const ContactLinearisation& lin, const ContactParameters& p,
                       double dt, OpenCloseState& s) {
   s.iterate.resize(contacts.size());
   s.friction_passes = 0;
   s.gross_passes = 0;
   s.free_pass = false;
-  const double lag_weight = p.friction_lag > 0 ? -std::expm1(-dt / p.friction_lag) : 1.0;
+  s.dt = dt;
   parallel_for_each(
       contacts.size(),
       [&](std::size_t i) {
         const Contact& c = contacts[i];
         const bool closed = c.state != ContactState::Open;
         s.iterate[i] = {lin.offsets[i].s0, c.normal_force, lin.offsets[i].s0, closed};
-        if (closed && c.friction_lagged) {
+        if (closed && p.friction_lag > 0 && c.friction_age > 0) {
           s.iterate[i].lag_start = c.friction_normal;
-          s.iterate[i].lag_weight = lag_weight;
+          s.iterate[i].lag_weight = lag_weight(dt, c.friction_age, p.friction_lag);
         }
       },
       1024);
@@ -310,8 +322,21 @@ void keep_lagged_friction(std::span<Contact> contacts, OpenCloseState& s, const 
       contacts.size(),
       [&](std::size_t i) {
         Contact& c = contacts[i];
-        c.friction_lagged = lag && c.state != ContactState::Open;
-        c.friction_normal = c.friction_lagged ? friction_normal(s.iterate[i], c.normal_force) : 0.0;
+        const double age = c.friction_age;
+        if (!lag) {
+          c.friction_normal = 0;
+          c.friction_age = 0;
+        } else if (c.state != ContactState::Open) {
+          c.friction_normal = friction_normal(s.iterate[i], c.normal_force);
+          // One step older; closed again after a brief opening: the same
+          // interface, its memory full (w = 1 − exp(−Δt/t_r) from now on).
+          c.friction_age = age > 0 ? age + s.dt : age < 0 ? kInfinity : s.dt;
+        } else {
+          // Open: how long, while that is brief (kSameInterface).
+          const double open_for = (age < 0 ? -age : 0.0) + s.dt;
+          c.friction_normal = 0;
+          c.friction_age = age != 0 && open_for < kSameInterface * p.friction_lag ? -open_for : 0.0;
+        }
       },
       1024);
 }

@@ -53,6 +53,7 @@ struct OpenCloseState {
   int friction_passes = 0;                   // solves of this attempt redone for friction alone
   int gross_passes = 0;                      // ... of them for a gross lag, not counted by the open-close limit
   bool free_pass = false;                    // the last check asked for such a solve
+  double dt = 0;                             // the attempt's step (s)
   std::vector<ContactIterationState> saved;  // at the start of the step, for a redo
   // Whether a contact may hold a lagged friction force (keep_lagged_friction
   // left one, or the contacts came from elsewhere: a checkpoint). Without
@@ -67,7 +68,7 @@ void restore_contact_states(std::span<Contact> contacts, const OpenCloseState& s
 // An attempt's starting point: each contact's shear offset, the normal
 // force of the last accepted solve (Shi's friction lag) and, with
 // friction_lag, its lagged friction normal force and the weight of the new
-// N in it over this attempt's dt, 1 − exp(−dt/t_r).
+// N in it over this attempt's dt (lag_weight, contact_law.hpp).
 void start_open_close(std::span<const Contact> contacts, const ContactLinearisation& lin, const ContactParameters& p,
                       double dt, OpenCloseState& s);
 
@@ -94,11 +95,18 @@ void keep_shear_references(std::span<Contact> contacts, const ContactLinearisati
 // normal force its friction strength ended the step with, N_f (locked or
 // sliding: the strength is a state of the contact that follows N, the
 // Prakash–Clifton law; the force of a locked contact is its spring's, not
-// touched by the lag); an open one drops it. A contact that closes (a new
-// one, or one transferred to another edge) starts from its first N: a
-// strength it never had would let it hold where it must slide, and one from
-// zero would let a landing block slide frictionless for t_r. Without
-// friction_lag every contact holds none (a pass only where one may hold one).
+// touched by the lag), and its memory grows one step older; an open one drops
+// N_f. A contact that closes as a new interface (a new one, one transferred to
+// another edge, or one open for longer than a share of t_r: a landing)
+// starts from its first N, and its strength is the mean of the N it has
+// carried since (lag_weight): a strength it never had would let it hold where
+// it must slide, one from zero would let a landing block slide frictionless
+// for t_r, and its first N held for t_r let a block landing or loaded at once
+// slide on the low N of its first step. A contact that closes again after a
+// brief opening is the same interface: from its first N with the full memory
+// t_r, so that a sliding block's contacts that open and close in a flutter do
+// not follow N at once each time they close. Without friction_lag every
+// contact holds none (a pass only where one may hold one).
 void keep_lagged_friction(std::span<Contact> contacts, OpenCloseState& s, const ContactParameters& p);
 
 }  // namespace dda

@@ -121,13 +121,14 @@ const ControlSpec kControls[] = {
         "friction_lag", [](Controls& c) -> double& { return c.friction_lag; }, kZeroOffOrPositive,
         "s: friction that lags the normal force by t_r, this value: the normal force N_f a contact's friction "
         "strength acts with follows N as dN_f/dt = (N − N_f)/t_r (the simplified Prakash–Clifton law), stepped "
-        "exactly for any Δt (Δt ≫ t_r: no lag); in steady sliding N_f = N, and a contact that closes starts from "
-        "its first N. The fast swings of N that couple a sliding block's strain modes into chatter (Δt ≤ 1e-5 s) "
+        "exactly for any Δt (Δt ≫ t_r: no lag); in steady sliding N_f = N, and a contact that closes (a landing) "
+        "is a new interface: its N_f is the mean of the N it has carried since. The fast swings of N that couple a "
+        "sliding block's strain modes into chatter (Δt ≤ 1e-5 s) "
         "no longer reach its friction: with 3e-3, under `contact_law = \"holding\"` and Shi's integrator, a 1 m "
         "granite block slides at the closed-form rate with its contacts closed at Δt = 1e-2 to 1e-6 s, φ up to "
         "45° (with gravity switched on at once, up to 25° below 1e-5 s), and waves through intact joints are "
-        "untouched. Not yet the default: a block landing or loaded at "
-        "once slides further while its friction builds up (`docs/contacts.md`)",
+        "untouched. Not yet the default: under `\"shi\"` it lets that law's model-wide band hold a block that "
+        "must slide (`docs/contacts.md`)",
         "0 (off)"),
     number(
         "restitution", [](Controls& c) -> double& { return c.restitution; }, kOffOrUnitInterval,

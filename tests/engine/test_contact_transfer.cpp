@@ -214,11 +214,19 @@ TEST(ContactTransfer, BlockSlidesDownFrictionlessStepsKeepingItsEnergy) {
 // nose first off the 1 cm step and rocks a while) to 0.05 s before its front
 // reaches that tread's end (4 m treads); bound 1 %. It must get there
 // without stalling and without sinking into a tread beyond the g2 bound.
+//
+// And under "holding" with friction_lag = 3 ms, the block landing on each
+// tread a new interface (docs/contacts.md; measured 1.81280 m/s²). (Under
+// "shi" with the lag the block never slides: Shi's model-wide friction band
+// holds it once the lag averages away the odd-even swing of its N.)
 TEST(ContactTransfer, BlockSlidesDownStepsAtTheFrictionRateOnEachFace) {
   const double a = 30, phi = 20;
   const double closed_form = kG * (std::sin(deg_to_rad(a)) - std::cos(deg_to_rad(a)) * std::tan(deg_to_rad(phi)));
-  for (const ContactLaw law : kLaws) {
+  for (const auto& [law, lag] :
+       {std::pair{ContactLaw::Shi, 0.0}, {ContactLaw::Holding, 0.0}, {ContactLaw::Holding, 3e-3}}) {
     Staircase s(a, phi, law, 3, 4.0, 0.01);
+    s.w.controls().friction_lag = lag;
+    const std::string what = std::string(name(law)) + (lag > 0 ? ", friction_lag" : "");
     const double bound = s.w.controls().g2 * s.w.half_height();
     double sunk = 0;
     auto flat_on_second_tread = [&] {
@@ -233,7 +241,7 @@ TEST(ContactTransfer, BlockSlidesDownStepsAtTheFrictionRateOnEachFace) {
       s.w.step();
       sunk = std::max(sunk, s.below_tread());
       flat_steps = s.along() - 0.2 > s.length && flat_on_second_tread() ? flat_steps + 1 : 0;
-      ASSERT_LT(s.along() + 0.2, 2 * s.length) << name(law) << ": it did not settle on the second tread";
+      ASSERT_LT(s.along() + 0.2, 2 * s.length) << what << ": it did not settle on the second tread";
     }
     const double t1 = s.w.time(), v1 = s.w.block_velocity(s.block).head<2>().dot(s.t);
     std::vector<std::pair<double, double>> history;  // (time, speed along the slope)
@@ -244,10 +252,10 @@ TEST(ContactTransfer, BlockSlidesDownStepsAtTheFrictionRateOnEachFace) {
     }
     const double t_end = s.w.time() - 0.05;
     auto it = std::find_if(history.begin(), history.end(), [&](const auto& p) { return p.first >= t_end; });
-    ASSERT_TRUE(it != history.end() && it->first > t1 + 0.3) << name(law) << ": a window of " << t_end - t1 << " s";
+    ASSERT_TRUE(it != history.end() && it->first > t1 + 0.3) << what << ": a window of " << t_end - t1 << " s";
     const double measured = (it->second - v1) / (it->first - t1);
-    EXPECT_NEAR(measured, closed_form, 0.01 * closed_form) << name(law);
-    EXPECT_LT(sunk, bound) << name(law);
+    EXPECT_NEAR(measured, closed_form, 0.01 * closed_form) << what;
+    EXPECT_LT(sunk, bound) << what;
   }
 }
 
