@@ -14,6 +14,8 @@
 --          solver (default: auto) and names the row wall(40)[cholmod];
 --          --set gg=1 makes a wall dynamic (row wall(40)gg1);
 --          --set integrator=newmark|generalized_alpha (default: the scene's, shi).
+--          --set law=shi|holding: the contact law (default: the scene's; the walls take the
+--          engine's default).
 -- Run:     build/dda run scripts/bench/bench.lua --set scene=wall --set n=20 --set threads=2 [--set csv=FILE]
 --          (scripts/bench/run.sh runs the whole table, one process per row so
 --          that each row's peak memory is its own).
@@ -40,6 +42,7 @@ local predict = dda.param("predict", true)  -- false: open-close iterations star
 local patch = dda.param("patch", -1)  -- re-solve patch hops; -1 keeps the engine's default
 local solver = dda.param("solver", "")  -- "pcg" or "cholmod"; "" keeps the automatic choice
 local gg = dda.param("gg", -1)  -- the dynamic parameter; -1 keeps the scene's
+local law = dda.param("law", "")  -- contact_law; "" keeps the scene's (the engine's default for walls)
 
 local m, name
 if scene == "wall" then
@@ -65,6 +68,10 @@ if warmup ~= 2 then name = string.format("%s@%d", name, warmup) end
 if solver ~= "" then
   m:controls{ solver = solver }
   name = string.format("%s[%s]", name, solver)
+end
+if law ~= "" then
+  m:controls{ contact_law = law }
+  name = string.format("%s{%s}", name, law)
 end
 if pre ~= "" then m:controls{ preconditioner = pre } end
 if mesh_pre ~= "" then m:controls{ mesh_preconditioner = mesh_pre } end
