@@ -40,6 +40,13 @@ class Interrupted : public ScriptError {
   using ScriptError::ScriptError;
 };
 
+// dda run --list-params: the script has read its parameters (it reached its
+// first step, or the first file it would write) and is stopped there.
+class ParamsOnlyStop : public ScriptError {
+ public:
+  using ScriptError::ScriptError;
+};
+
 // An error raised by a Lua function that C++ called through lua_pcall. The
 // error object itself is kept in the registry and raised again unchanged (it
 // already carries the position of the failing line).

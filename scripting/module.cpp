@@ -53,7 +53,13 @@ int dda_load(lua_State* L) {
 int dda_param(lua_State* L) {
   const std::string name = check_string(L, 1, "dda.param", "argument 1 (name)");
   Session& s = session(L);
-  s.params_read.insert(name);
+  s.params_read.emplace(
+      name, lua_isnoneornil(L, 2) ? std::string("nil") : [&] {
+        lua_pushvalue(L, 2);
+        std::string text = luaL_tolstring(L, -1, nullptr);
+        lua_pop(L, 2);
+        return text;
+      }());
   const auto it = s.params.find(name);
   if (it == s.params.end()) {
     lua_settop(L, 2);

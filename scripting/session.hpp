@@ -70,8 +70,13 @@ struct ResultValue {
 
 struct Session {
   std::filesystem::path out_dir = "out";
-  std::map<std::string, std::string> params;   // --set NAME=VALUE
-  std::set<std::string> params_read;           // names the script asked for
+  std::map<std::string, std::string> params;       // --set NAME=VALUE
+  std::map<std::string, std::string> params_read;  // names the script asked for → their defaults, as text
+  // dda run --list-params: the script runs up to its first stepping call, or
+  // the first file it would write or command it would run, and stops there
+  // (params_stopped then says so): what it read by then is what it reads.
+  bool params_only = false;
+  bool params_stopped = false;
   int threads = -1;                            // --threads N (−1: leave to the script)
   bool quiet = false;                          // --quiet
   ProgressMode progress = ProgressMode::None;  // how stepping shows progress (see ProgressMode)
@@ -110,6 +115,10 @@ struct Session {
   // with the status asked for.
   std::function<int(lua_State*, int)> on_exit;
 };
+
+// --list-params: stops the script at `what` (its first stepping call, its
+// first file written) by raising ParamsOnlyStop.
+void stop_if_params_only(lua_State* L, const char* what);
 
 // Prints "dda: warning: text" on stderr and writes it to the run log of
 // `dda run` (set_run_log; warnings come from places that have no Lua state,

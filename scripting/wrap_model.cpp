@@ -212,6 +212,7 @@ void log_controls_once(lua_State* L, ScriptModel& m) {
 // m:step(n) and m:run{steps = n} end where they ended in the straight run
 // (at once, if that is before the checkpoint), as m:run{time = t} does.
 void run_loop(lua_State* L, ScriptModel& m, const RunPlan& plan) {
+  stop_if_params_only(L, "the first stepping call");
   restart_if_pending(L, m);
   World& w = m.world();
   const long s0 = m.replay_mark ? *m.replay_mark : w.step_count();
