@@ -87,7 +87,7 @@ struct Session {
   // creates writes a frame every N steps into <out>/frames (frames_2, ... for
   // later models). 0: none.
   long frames_every = 0;
-  std::string frames_field = "sigma_xx";
+  std::string frames_field = "sigma_yy";  // as m:frame{} (render::FrameOptions)
   int frames_width = 1280, frames_height = 720;
   long frames_from = 0, frames_to = -1;  // --frames FROM:TO:EVERY (steps; -1: no end)
   bool frames_range_set = false;         // --frame-range MIN,MAX

@@ -17,9 +17,11 @@
 
 namespace {
 
-// The options of dda run and dda console, as --help prints them.
+// The options of dda run and dda console, as --help prints them (help2man
+// makes the man page from `dda --help`: "Usage:", then sections headed
+// "Name:" with items indented under them).
 const char* kRunOptions =
-    "options:\n"
+    "Options:\n"
     "  --out DIR          output folder for monitor CSV files (default: out)\n"
     "  --threads N        worker threads for every model (0: every core); overrides the script\n"
     "  --set NAME=VALUE   a parameter the script reads with dda.param(\"NAME\", default)\n"
@@ -31,8 +33,8 @@ const char* kRunOptions =
     "  --frame-range MIN,MAX  their colour range in SI units (default: from the first frame)\n"
     "  --frame-view X1,Y1,X2,Y2  the world window they show in m (default: the first frame's)\n"
     "  --movie FILE       with --frames: DIR/FILE made with ffmpeg when the run ends (if on the PATH)\n"
-    "  --frame-field F    the field of those frames: sigma_xx (default), sigma_yy, tau_xy,\n"
-    "                     sigma_1, von_mises, velocity, displacement, none\n"
+    "  --frame-field F    the field of those frames: sigma_yy (default, as m:frame), sigma_xx,\n"
+    "                     tau_xy, sigma_1, von_mises, velocity, displacement, none\n"
     "  --frame-size WxH   their size in pixels (default 1280x720)\n"
     "  --vtu N            every model writes ParaView files (VTU, PVD) every N steps into DIR/vtu\n"
     "  --checkpoint-every N | Ts  every model writes DIR/checkpoint.ckpt every N steps or T s of\n"
@@ -40,16 +42,19 @@ const char* kRunOptions =
     "  --restart FILE     (dda run) continue from a checkpoint: the script runs again, and its model\n"
     "                     takes the checkpoint's state at its first stepping call\n"
     "  -h, --help         this text\n"
-    "exit status: 0 success, 1 error in the script, 2 bad command line, 130 interrupted (Ctrl-C)\n";
+    "\n"
+    "Exit status:\n"
+    "  0 success, 1 error in the script, 2 bad command line, 130 interrupted (Ctrl-C)\n";
 
 const char* kCommands =
-    "  dda run SCRIPT.lua [options] [-- ARGS...]   run a script (batch)\n"
-    "  dda SCRIPT.lua [options]                    same as dda run\n"
-    "  dda console [SCRIPT.lua] [options]          interactive prompt (runs SCRIPT first)\n"
-    "  dda sweep SCRIPT.lua --grid NAME=V1,V2,... [--jobs N] [--task ID | --collect] [options]\n"
-    "                                              one run per combination, a summary table\n"
-    "  dda --version                               the version and the commit it is built from\n"
-    "dda COMMAND --help describes one command.\n";
+    "Commands:\n"
+    "  run SCRIPT.lua     run a script to its end (batch); dda SCRIPT.lua is the same\n"
+    "  console [SCRIPT.lua]  a Lua prompt with the dda module (runs SCRIPT first)\n"
+    "  sweep SCRIPT.lua --grid NAME=V1,V2,...\n"
+    "                     one run per combination of the values, a summary table (dda sweep --help)\n"
+    "  --version          the version and the commit it is built from\n"
+    "dda COMMAND --help describes one command. The Lua API: docs/lua_api.md, or help() in the console.\n"
+    "\n";
 
 // The one line a command-line error prints under its message.
 std::string short_usage(const std::string& command) {
@@ -61,22 +66,23 @@ std::string short_usage(const std::string& command) {
 void print_help(const std::string& command) {
   if (command == "run") {
     std::fputs(
-        "usage: dda run SCRIPT.lua [options] [-- ARGS...]\n"
+        "Usage: dda run SCRIPT.lua [options] [-- ARGS...]\n"
         "Runs SCRIPT.lua (a model in Lua: docs/scripting.md) to its end. What it writes goes into the output\n"
         "folder, with its run log (DIR/run.log); ARGS after -- reach the script as arg[1], arg[2], ...\n"
-        "SCRIPT.lua not found as given: an installed dda runs its scene of that name.\n",
+        "SCRIPT.lua not found as given: an installed dda runs its scene of that name.\n\n",
         stdout);
   } else if (command == "console") {
     std::fputs(
-        "usage: dda console [SCRIPT.lua] [options]\n"
+        "Usage: dda console [SCRIPT.lua] [options]\n"
         "Runs SCRIPT.lua (if given) and leaves a Lua prompt with its models alive: help() documents the\n"
-        "API, Tab completes names, Ctrl-C stops a run at the next step, Ctrl-D leaves.\n",
+        "API, Tab completes names, Ctrl-C stops a run at the next step, Ctrl-D leaves.\n\n",
         stdout);
   } else {
     std::fputs(
-        "usage: dda COMMAND ...\n"
-        "2-D Discontinuous Deformation Analysis of jointed rock under dynamic loads, driven by Lua scripts.\n"
-        "commands:\n",
+        "Usage: dda run SCRIPT.lua [options] [-- ARGS...]\n"
+        "  or:  dda console [SCRIPT.lua] [options]\n"
+        "  or:  dda sweep SCRIPT.lua --grid NAME=V1,V2,... [options]\n"
+        "2-D Discontinuous Deformation Analysis of jointed rock under dynamic loads, driven by Lua scripts.\n\n",
         stdout);
     std::fputs(kCommands, stdout);
   }

@@ -159,10 +159,11 @@ TEST(CliErrors, BadCommandLine) {
 // --help on dda and on each command: exit status 0, its usage and options on stdout.
 TEST(CliErrors, HelpOnEveryCommand) {
   TempDir dir("help");
-  for (const auto& [args, usage] : {std::pair{"--help", "usage: dda COMMAND"}, {"-h", "usage: dda COMMAND"},
-                                    {"run --help", "usage: dda run SCRIPT.lua"},
-                                    {"run x.lua -h", "usage: dda run SCRIPT.lua"},
-                                    {"console --help", "usage: dda console"},
+  for (const auto& [args, usage] : {std::pair{"--help", "Usage: dda run SCRIPT.lua"},
+                                    {"-h", "  or:  dda sweep"},
+                                    {"run --help", "Usage: dda run SCRIPT.lua"},
+                                    {"run x.lua -h", "Usage: dda run SCRIPT.lua"},
+                                    {"console --help", "Usage: dda console"},
                                     {"sweep --help", "dda sweep SCRIPT.lua --grid"}}) {
     const auto r = run_dda(args, dir.path);
     EXPECT_EQ(r.exit_code, 0) << args << ":\n" << r.err;
