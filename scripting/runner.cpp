@@ -8,12 +8,15 @@
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
+#include <mutex>
 #include <thread>
 
 #include "core/error.hpp"
 #include "dda_version.hpp"
+#include "live_server.hpp"
 #include "lua_support.hpp"
 #include "model.hpp"
+#include "run_control.hpp"
 #include "scripting.hpp"
 
 namespace dda::script {
@@ -175,6 +178,7 @@ lua_State* new_state(Session s) {
 }
 
 bool run_file(lua_State* L, const std::string& path, const std::vector<std::string>& args, std::string& error) {
+  const std::lock_guard lua(lua_gate());  // run_control.hpp
   // arg table, as lua.c: arg[0] = script, arg[1..] = its arguments.
   lua_createtable(L, static_cast<int>(args.size()), 1);
   lua_pushstring(L, path.c_str());
@@ -242,6 +246,7 @@ std::filesystem::path resolve_script(const std::string& script) {
 const char* commit_id() { return DDA_COMMIT; }
 
 bool run_string(lua_State* L, const std::string& code, const std::string& chunkname, std::string& error) {
+  const std::lock_guard lua(lua_gate());  // run_control.hpp
   if (luaL_loadbufferx(L, code.data(), code.size(), ("=" + chunkname).c_str(), "t") != LUA_OK) {
     error = pop_error(L);
     return false;
@@ -297,11 +302,19 @@ bool read_restart(Session& s, std::string& error) {
 
 namespace {
 
+bool live_view_attached(lua_State* L) { return session(L).live != nullptr; }
+
 // How the run ends, whether the script returns or calls os.exit: results
 // and outputs written and checked, the state closed (models finish their
 // queued frames and files), the run log's last line. Returns the exit status
 // (`requested`: the script's os.exit status, when it is still ok).
 int finish_batch(lua_State* L, bool ok, std::string error, int requested, std::chrono::steady_clock::time_point start) {
+  // Background runs the script left going end first (a paused one only when
+  // a live view can resume it); one that failed fails the run.
+  if (ok) wait_background_runs(live_view_attached(L), interrupt_requested);
+  for (const std::string& failure : background_failures())
+    if (ok) ok = false, error = failure;
+  stop_background_runs();
   const bool interrupted = interrupt_requested();
   remove_interrupt_handler();
   // A script that failed early never reached its dda.param calls: no warnings then.
@@ -373,6 +386,7 @@ int script_exit(lua_State* L) {
     g_batch = nullptr;
     std::exit(finish_batch(batch.L, true, "", requested, batch.start));
   }
+  stop_background_runs();
   lua_close(main);  // the console, tests: close every model, then exit
   std::exit(requested);
 }
@@ -398,6 +412,12 @@ int run_batch(const RunOptions& options) {
     return 1;
   }
   set_run_log(&session(L).log);
+  if (std::string live_error; !start_live_view(L, options.script, live_error)) {
+    std::fprintf(stderr, "dda: %s\n", live_error.c_str());
+    session(L).log.line("error: " + live_error);
+    lua_close(L);
+    return 2;
+  }
   install_interrupt_handler(L);
   BatchInProgress batch{L, start};
   g_batch = &batch;

@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <cstring>
 #include <ctime>
+#include <mutex>
 #include <new>
 #include <system_error>
 
@@ -145,6 +146,8 @@ RunLog* g_run_log = nullptr;
 void set_run_log(RunLog* log) { g_run_log = log; }
 
 void warn(const std::string& text) {
+  static std::mutex mutex;
+  std::lock_guard g(mutex);
   std::fprintf(stderr, "dda: warning: %s\n", text.c_str());
   std::fflush(stderr);
   if (g_run_log) g_run_log->line("warning: " + text);

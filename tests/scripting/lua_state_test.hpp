@@ -6,6 +6,7 @@
 
 #include <string>
 
+#include "run_control.hpp"
 #include "scripting.hpp"
 
 namespace dda::test {
@@ -17,6 +18,7 @@ class LuaStateTest : public ::testing::Test {
     ASSERT_NE(L, nullptr);
   }
   void TearDown() override {
+    script::stop_background_runs();  // before the models close (run_control.hpp)
     if (L) lua_close(L);
   }
 
