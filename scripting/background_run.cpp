@@ -17,7 +17,6 @@ BackgroundRun::BackgroundRun(lua_State* L, int model_idx, ScriptModel& m, RunPla
   c.begin(run_.view(true));
   register_background_run(m_.shared_control());
   thread_ = std::thread([this] { main(); });
-  c.set_stepping_thread(thread_.get_id());
 }
 
 BackgroundRun::~BackgroundRun() {
@@ -50,6 +49,8 @@ bool BackgroundRun::one_step(std::string& failed) {
 
 void BackgroundRun::main() {
   RunControl& c = m_.control();
+  c.set_stepping_thread(std::this_thread::get_id());
+  mark_stepping_thread();
   RunState final_state = RunState::Finished;
   std::string failed, summary;
   for (;;) {
@@ -91,6 +92,11 @@ void start_background_run(lua_State* L, int model_idx, ScriptModel& m, RunPlan p
 
 namespace {
 
+// A callback of a background run cannot wait for, stop or close its own run.
+void refuse_on_stepping_thread(const char* call) {
+  if (on_stepping_thread()) fail(call, ": not from a callback of a background run (it would wait for itself)");
+}
+
 int push_time_and_step(lua_State* L, ScriptModel& m) {
   lua_pushnumber(L, m.world().time());
   lua_pushinteger(L, m.world().step_count());
@@ -129,6 +135,7 @@ int m_resume(lua_State* L) {
 
 // m:stop() → t, step: the background run ends at its next step boundary.
 int m_stop(lua_State* L) {
+  refuse_on_stepping_thread("m:stop");
   ScriptModel& m = check_model(L, 1, "m:stop");
   if (m.background) {
     if (m.control().stop()) {
@@ -143,6 +150,7 @@ int m_stop(lua_State* L) {
 // m:wait() → t, step: waits for the background run to end; raises its error.
 // Ctrl-C pauses it and stops the wait.
 int m_wait(lua_State* L) {
+  refuse_on_stepping_thread("m:wait");
   ScriptModel& m = check_model(L, 1, "m:wait");
   RunControl& c = m.control();
   if (c.state() == RunState::Paused) fail("m:wait: the background run is paused: m:resume() it first (or m:stop() it)");

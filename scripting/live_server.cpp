@@ -123,6 +123,7 @@ struct LiveServer::Impl {
   render::WorldSnapshot snapshot;  // the shown model's start and monitors
   int snapshot_model = -1, snapshot_monitors = 0;
   Clock::time_point next_render = Clock::now();
+  long renders = 0;
   std::string cached_key;
   std::string cached_png;
 #endif
@@ -168,18 +169,18 @@ void LiveServer::Impl::fill_status(JsonObject& o, Client& client, bool first, bo
     o.string("state", "closed");
     return;
   }
-  o.string("state", to_string(state));
+  o.string("state", control->holding_next() ? "paused" : to_string(state));  // (the next run begins paused)
   o.boolean("background", plan.background);
   const World& w = m->world();
   const double t = w.time();
   const long step = w.step_count();
-  // Steps per second and simulated seconds per second, over the last second or more.
+  // Steps per second and simulated seconds per second, over the last half second or more.
   const auto now = Clock::now();
   const double span = std::chrono::duration<double>(now - client.last_wall).count();
   if (client.last_step < 0 || step < client.last_step || client.model != model_id) {
     client.last_step = step, client.last_t = t, client.last_wall = now;
     client.steps_per_second = client.sim_per_second = 0;
-  } else if (span >= 1) {
+  } else if (span >= 0.5) {
     client.steps_per_second = (step - client.last_step) / span;
     client.sim_per_second = (t - client.last_t) / span;
     client.last_step = step, client.last_t = t, client.last_wall = now;
@@ -309,11 +310,12 @@ bool LiveServer::Impl::frame(const httplib::Request& req, httplib::Response& res
     res.set_content("no model yet", "text/plain");
     return true;
   }
-  std::this_thread::sleep_until(next_render);
-  const auto start = Clock::now();
+  while (Clock::now() < next_render && !stopping && !ending) std::this_thread::sleep_for(std::chrono::milliseconds(20));
   render::Scene scene;
+  auto start = Clock::now();
   {
     std::lock_guard hold(control->lock);  // between two steps
+    start = Clock::now();                 // (the wait for the step in progress costs the run nothing)
     ScriptModel* m = control->model();
     if (!m || m->closed() || m->world().block_count() == 0) {
       res.status = 404;
@@ -336,10 +338,15 @@ bool LiveServer::Impl::frame(const httplib::Request& req, httplib::Response& res
     const std::vector<std::uint8_t> png = render::encode_png(f.image);
     cached_png.assign(png.begin(), png.end());
     cached_key = key;
+    // The next frame waits so that rendering keeps to its share of the
+    // wall clock (the first, which creates the OpenGL context, sets no pace).
     const double took = std::chrono::duration<double>(Clock::now() - start).count();
-    next_render = Clock::now() + std::chrono::duration_cast<Clock::duration>(
-                                     std::chrono::duration<double>(took * (1 / kRenderShare - 1)));
+    if (renders++ > 0)
+      next_render = Clock::now() + std::chrono::duration_cast<Clock::duration>(
+                                       std::chrono::duration<double>(took * (1 / kRenderShare - 1)));
   }
+  const render::Box b = scene.bounds();
+  res.set_header("X-DDA-Aspect", msg(b.height() > 0 ? b.width() / b.height() : 1.0));
   res.set_header("Cache-Control", "no-store");
   res.set_header("X-DDA-Step", std::to_string(scene.step));
   res.set_header("X-DDA-Time", msg(scene.time));
@@ -356,12 +363,12 @@ bool LiveServer::Impl::frame(const httplib::Request&, httplib::Response& res) {
 
 void LiveServer::Impl::control(bool pause, httplib::Response& res) {
   const auto [c, id] = current();
-  const bool changed = c && (pause ? c->pause() : c->resume());
+  const bool changed = c && (pause ? c->hold_next() : c->resume());
   std::string out;
   {
     JsonObject o(out);
     o.boolean("ok", changed);
-    o.string("state", c ? to_string(c->state()) : "no model yet");
+    o.string("state", !c ? "no model yet" : c->holding_next() ? "paused" : to_string(c->state()));
   }
   res.set_header("Cache-Control", "no-store");
   res.set_content(out, "application/json");

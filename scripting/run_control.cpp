@@ -31,7 +31,8 @@ void RunControl::forget_model() {
 
 void RunControl::begin(const RunPlanView& plan) {
   std::lock_guard g(m_);
-  state_ = RunState::Running;
+  state_ = hold_next_ ? RunState::Paused : RunState::Running;
+  hold_next_ = false;
   plan_ = plan;
   error_.clear();
   notice_.clear();
@@ -96,8 +97,23 @@ bool RunControl::pause() {
   return true;
 }
 
+bool RunControl::hold_next() {
+  std::lock_guard g(m_);
+  if (state_ == RunState::Paused || hold_next_) return false;
+  if (state_ == RunState::Running)
+    state_ = RunState::Paused;
+  else
+    hold_next_ = true;
+  cv_.notify_all();
+  return true;
+}
+
 bool RunControl::resume() {
   std::lock_guard g(m_);
+  if (hold_next_) {
+    hold_next_ = false;
+    return true;
+  }
   if (state_ != RunState::Paused) return false;
   state_ = RunState::Running;
   cv_.notify_all();
@@ -115,6 +131,11 @@ bool RunControl::stop() {
 RunState RunControl::state() const {
   std::lock_guard g(m_);
   return state_;
+}
+
+bool RunControl::holding_next() const {
+  std::lock_guard g(m_);
+  return hold_next_;
 }
 
 bool RunControl::active() const {
@@ -181,7 +202,14 @@ TurnLock& lua_gate() {
 namespace {
 // The models the calling thread's API calls hold, innermost last.
 thread_local std::vector<std::shared_ptr<RunControl>> t_held;
+// Whether this thread steps a background run (it holds its model, and Lua
+// for its callbacks, from outside any API call).
+thread_local bool t_stepping = false;
 }  // namespace
+
+void mark_stepping_thread() { t_stepping = true; }
+
+bool on_stepping_thread() { return t_stepping; }
 
 void hold_for_call(ScriptModel& m) {
   const std::shared_ptr<RunControl>& c = m.shared_control();
@@ -191,7 +219,7 @@ void hold_for_call(ScriptModel& m) {
   // background run that waits for Lua take its step (as Lua itself lets
   // other threads in around C calls): a script that polls m:running() or
   // m:time() in a loop sees the run go on.
-  if (t_held.empty() && lua_gate().held_by_this_thread()) lua_gate().yield();
+  if (t_held.empty() && !t_stepping && lua_gate().held_by_this_thread()) lua_gate().yield();
   c->lock.lock();
   t_held.push_back(c);
 }

@@ -83,10 +83,15 @@ class RunControl {
   bool pause();
   bool resume();
   bool stop();
+  // The live view's Pause: pause() a run in progress, or, between stepping
+  // calls (a script that steps with m:step() in a loop), have the next run
+  // begin paused; resume() lets it go.
+  bool hold_next();
 
   // ---- state, from any thread ---------------------------------------------------------------
   RunState state() const;
-  bool active() const;  // Running or Paused
+  bool holding_next() const;  // hold_next() between runs, not yet resumed
+  bool active() const;        // Running or Paused
   bool background() const;
   // Waits until the run has ended (no longer Running or Paused); gives up
   // when `give_up` returns true (called every 0.1 s, holding nothing of the
@@ -112,6 +117,7 @@ class RunControl {
   std::string error_;
   double behind_ = 0;
   bool stop_ = false;
+  bool hold_next_ = false;
   std::string notice_;  // for take_notice (empty once taken)
   std::thread::id stepping_thread_;
 };
@@ -124,6 +130,12 @@ TurnLock& lua_gate();
 // returns (ApiCallScope, opened by every guarded call): it waits for a step
 // in progress to end.
 void hold_for_call(ScriptModel& m);
+
+// A background run's thread says so once; calls from its callbacks then
+// never let go of Lua (it holds its model meanwhile), and may not wait for
+// or end their own run.
+void mark_stepping_thread();
+bool on_stepping_thread();
 
 class ApiCallScope {
  public:

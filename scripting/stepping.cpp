@@ -1,6 +1,7 @@
 #include "stepping.hpp"
 
 #include <cmath>
+#include <cstdio>
 #include <system_error>
 
 #include "model.hpp"
@@ -94,6 +95,14 @@ const Stepping::Clock::time_point* Stepping::next_start() {
   return &next_;
 }
 
+namespace {
+std::string three_digits(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.3g", v);
+  return buf;
+}
+}  // namespace
+
 double Stepping::pace() const {
   const double wall = std::chrono::duration<double>(Clock::now() - wall0_).count();
   return wall > 0 ? (m_.world().time() - t0_) / wall : 0;
@@ -104,14 +113,20 @@ std::string Stepping::pace_report() const {
   const double p = pace();
   // Within 5 % of the pace asked for (sleeps overshoot by a little).
   if (p >= 0.95 * plan_.realtime) return "";
-  return msg("realtime = ", plan_.realtime, ": could not keep up: ", p, " s of simulated time per second (",
-             p / plan_.realtime, " of the pace asked for)");
+  return msg("realtime = ", plan_.realtime, ": could not keep up: ", three_digits(p),
+             " s of simulated time per second (", three_digits(p / plan_.realtime), " of the pace asked for)");
+}
+
+std::string Stepping::summary() const {
+  const double wall = std::chrono::duration<double>(Clock::now() - wall0_).count();
+  return msg("t = ", t0_, " -> ", m_.world().time(), " s, ", m_.world().step_count() - s0_, " steps in ", wall,
+             " s of wall clock: ", pace(), " s of simulated time per second");
 }
 
 std::string Stepping::take_lag_warning() {
   if (!lag_pending_) return "";
   lag_pending_ = false;
-  return msg("realtime = ", plan_.realtime, ": the run cannot keep up (", pace(),
+  return msg("realtime = ", plan_.realtime, ": the run cannot keep up (", three_digits(pace()),
              " s of simulated time per second so far); it goes on as fast as it can");
 }
 

@@ -68,6 +68,9 @@ class Stepping {
   // to it, or was not paced).
   double pace() const;
   std::string pace_report() const;
+  // "t = 0 → 0.003 s, 1500 steps in 5.9 s of wall clock: 0.00051 s of
+  // simulated time per second" (the run log's line for each stepping call).
+  std::string summary() const;
   // First call after the run fell more than half a second behind: the line
   // to warn with (once per run); "" otherwise.
   std::string take_lag_warning();

@@ -230,7 +230,8 @@ void run_loop(lua_State* L, ScriptModel& m, RunPlan plan) {
     if (!run.follow_up(L)) break;
   }
   stop_if_interrupted(m, &run);
-  if (const std::string pace = run.pace_report(); !pace.empty() && !session(L).quiet) warn(pace);
+  if (const std::string pace = run.pace_report(); !pace.empty()) warn(pace);
+  session(L).log.line("run: " + run.summary());
   run.settle_replay_mark();
 }
 
@@ -469,6 +470,7 @@ int m_contact_summary(lua_State* L) {
 int m_close(lua_State* L) {
   auto* box = static_cast<ModelBox*>(luaL_testudata(L, 1, kModelType));
   if (!box || !box->model) fail("m:close: expected a model as self, got ", type_of(L, 1));
+  if (on_stepping_thread()) fail("m:close: not from a callback of a background run (it would wait for itself)");
   hold_for_call(*box->model);
   check_not_busy(*box->model, "m:close");
   box->model->close();
