@@ -559,7 +559,7 @@ void draw_overlay(Image& img, const Scene& scene, const FrameOptions& o, const P
                             : r.y + static_cast<int>(std::lround((1 - f) * (r.h - 1)));
       for (int j = -size / 2; j <= size / 2; ++j) {
         const int w = size - 2 * std::abs(j);  // a triangle pointing at the ramp
-        img.fill_rect({r.x - 2 - w, y + j, w, 1}, {0, 0, 0});
+        img.fill_rect({r.x - 2 - size, y + j, w, 1}, {0, 0, 0});
       }
     }
     int y = r.bottom() + p.arrow + m / 2;
