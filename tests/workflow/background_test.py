@@ -2,11 +2,15 @@
 while a run goes on (m:start), refuses changes while it runs, Ctrl-C at the
 prompt pauses it (no step after), changes are taken while paused, m:resume()
 goes on, Ctrl-C in m:wait() pauses it again, and a run's end is said at the
-prompt. In a batch run a script that ends with a run still going waits for
-it, and a background run's error fails the run.
+prompt. The console's live view sees the run and its Pause pauses it. In a
+batch run a script that ends with a run still going waits for it, and a
+background run's error fails the run.
 Run: background_test.py path/to/dda"""
+import json
 import os
+import re
 import time
+import urllib.request
 
 from common import SOURCE, Console, check, finish, read, run, scratch, write
 
@@ -52,6 +56,29 @@ c.send("\x04")
 status = c.wait()
 check(status is not None and os.WIFEXITED(status) and os.WEXITSTATUS(status) == 0, "Ctrl-D leaves with exit 0",
       status)
+
+# ---- the console's live view: its Pause acts on the background run ----------------------------
+r = run(["--help"], d)
+if "--live" in r.stdout:
+    c = Console(d, env, ["--live", "0"])
+    said = c.expect("dda> ")
+    m = re.search(r"live view at (http://127\.0\.0\.1:\d+/)", said or "")
+    check(m is not None, "dda console --live 0 says where it serves", said)
+    c.send(paths + "\r")
+    c.send('scenes = require "scenes"; m = scenes.wall(4); m:start{ steps = 100000 }\r')
+    c.expect("dda> ")
+    time.sleep(1.0)
+    if m:
+        status = json.loads(urllib.request.urlopen(m.group(1) + "status", timeout=30).read())
+        check(status.get("state") == "running" and status.get("background") is True,
+              "the page sees the console's background run", status)
+        req = urllib.request.Request(m.group(1) + "pause", data=b"", method="POST")
+        answer = json.loads(urllib.request.urlopen(req, timeout=30).read())
+        c.send("print(m:running())\r")
+        check(answer.get("state") == "paused" and c.expect("false\tpaused") is not None,
+              "the page's Pause pauses it as m:pause() does", answer)
+    c.send("\x04")
+    c.wait()
 
 # ---- batch: the script ends with its run still going ------------------------------------------
 write(os.path.join(d, "left_going.lua"), paths + """
