@@ -114,32 +114,6 @@ TEST(HonestFrames, SequenceColoursFollowTheDataByDefault) {
   fs::remove_all(dir);
 }
 
-// range = "grow": the widest range so far, said under the bar.
-TEST(HonestFrames, GrowingRangeNeverShrinks) {
-  const fs::path dir = temp_dir("grow");
-  SequenceOptions so;
-  so.folder = dir;
-  so.frame = velocity_frame();
-  so.grow_range = true;
-  {
-    FrameSequence seq(so);
-    seq.capture(two_speeds(0.5, 1.0, 0));
-    seq.capture(two_speeds(0.1, 0.2, 10));
-    seq.flush();
-  }
-  FrameOptions o = velocity_frame();
-  o.view = frame_view(two_speeds(0, 0, 0), 1);
-  o.range = ValueRange{0, 1.0};
-  o.range_grows = true;
-  const Scene later = two_speeds(0.1, 0.2, 10);
-  const Frame expected = Renderer().render(later, o);
-  EXPECT_EQ(expected.layout.range_note, "range: grows");
-  EXPECT_FALSE(expected.layout.above);
-  const Rgb fast = png_pixel(dir / "velocity_00001.png", expected.layout.to_pixel(later.centroids[1]));
-  EXPECT_LE(diff(fast, color_at(ColorMap::Viridis, 0.2)), 2) << "0.2 m/s on the range [0, 1] the first frame set";
-  fs::remove_all(dir);
-}
-
 // The frame's true extremes on a bar whose set range they pass: the
 // extremes as they are, an arrow end in the end colour on each side passed,
 // none on a side not passed; without a set range no arrows at all.

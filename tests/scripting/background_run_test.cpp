@@ -27,18 +27,6 @@ class BackgroundRun : public dda::test::LuaStateTest {
     start(std::move(s));
     run(kScene);
   }
-  std::string string(const char* global) {
-    lua_getglobal(L, global);
-    const std::string v = lua_tostring(L, -1) ? lua_tostring(L, -1) : "(nil)";
-    lua_pop(L, 1);
-    return v;
-  }
-  double number(const char* global) {
-    lua_getglobal(L, global);
-    const double v = lua_tonumber(L, -1);
-    lua_pop(L, 1);
-    return v;
-  }
 
   // Blocks of a 2 m x 1 m grid dropped 1 mm onto a fixed base, under
   // gravity, pushed on the left by a pressure: a Lua function of t when
