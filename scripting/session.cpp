@@ -118,6 +118,8 @@ void RunLog::failed(const std::string& why) {
 }
 
 void RunLog::line(const std::string& text) {
+  static std::mutex mutex;  // warnings come from background runs' threads too
+  std::lock_guard g(mutex);
   if (!file_.is_open()) return;
   char stamp[32];
   const std::time_t now = std::time(nullptr);
