@@ -9,6 +9,7 @@
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
+#include <functional>
 #include <map>
 #include <memory>
 #include <set>
@@ -104,6 +105,11 @@ struct Session {
   // simulated time, and when Ctrl-C stops it. 0: none.
   long checkpoint_steps = 0;
   double checkpoint_seconds = 0;
+  // What os.exit does in this run: given the main state and the status the
+  // script asked for, ends the run (closing the state) and returns the
+  // process's exit status. Empty: the state is closed and the process exits
+  // with the status asked for.
+  std::function<int(lua_State*, int)> on_exit;
   // --realtime F: every run without its own `realtime` option is paced to F
   // simulated seconds per wall-clock second. 0: as fast as it goes.
   double realtime = 0;

@@ -29,10 +29,10 @@
 #include <string>
 #include <vector>
 
+#include "app.hpp"
+#include "core/error.hpp"
 #include "live_server.hpp"
 #include "run_control.hpp"
-#include "scripting.hpp"
-#include "wrap.hpp"
 
 #ifdef DDA_HAVE_READLINE
 #include <readline/history.h>
@@ -40,8 +40,6 @@
 #endif
 
 namespace dda::script {
-
-int docall_with_traceback(lua_State* L, int nargs, int nresults);  // runner.cpp
 
 namespace {
 
@@ -562,7 +560,7 @@ void print_notices() {
 
 int call_interruptibly(lua_State* L, int nargs, int nresults) {
   install_interrupt_handler(L);
-  const int status = docall_with_traceback(L, nargs, nresults);
+  const int status = call_with_traceback(L, nargs, nresults);
   remove_interrupt_handler();
   release_call_holds();  // any an error unwound past
   if (interrupt_requested()) pause_background_runs_and_say();
@@ -586,8 +584,11 @@ int run_console(const RunOptions& options) {
     return 2;
   }
   const std::lock_guard lua(lua_gate());  // let go while waiting for input and in m:wait()
-  lua_pushcfunction(L, guarded<dda_help>);
+  // help() at the prompt: the module's dda.help.
+  lua_getglobal(L, "dda");
+  lua_getfield(L, -1, "help");
   lua_setglobal(L, "help");
+  lua_pop(L, 1);
   std::printf(
       "dda console %s (Lua %s.%s). help() lists the API; Tab completes names; Ctrl-C stops a run at the next "
       "step (and pauses background runs); Ctrl-D leaves.\n",
