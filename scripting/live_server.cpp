@@ -472,8 +472,6 @@ void LiveServer::show(ScriptModel& model) {
   ++impl_->shown_id;
 }
 
-bool live_view_built() { return true; }
-
 bool start_live_view(lua_State* L, const std::string& script, std::string& error) {
   Session& s = session(L);
   if (s.live_address.empty()) return true;
@@ -498,8 +496,6 @@ void show_live(lua_State* L, ScriptModel& model) {
 #else  // built without cpp-httplib
 
 namespace dda::script {
-
-bool live_view_built() { return false; }
 
 bool start_live_view(lua_State* L, const std::string&, std::string& error) {
   if (session(L).live_address.empty()) return true;

@@ -51,9 +51,6 @@ class LiveServer {
   std::unique_ptr<Impl> impl_;
 };
 
-// Whether this dda was built with the live view (cpp-httplib found).
-bool live_view_built();
-
 // Starts the live view the session asks for (--live), printing its address;
 // false and `error` when it cannot serve there. `script` titles the page.
 bool start_live_view(lua_State* L, const std::string& script, std::string& error);

@@ -44,6 +44,10 @@ def start_dda(extra=()):
     m = re.search(r"live view at (http://127\.0\.0\.1:\d+/)", line)
     if not m:
         p.kill()
+        p.wait()
+        if "without the live view" in line:
+            print("this dda was built without the live view: skipped")
+            sys.exit(77)
         return p, None
     return p, m.group(1)
 
@@ -63,11 +67,6 @@ def stop(p):
             p.kill()
             p.wait()
 
-
-r = subprocess.run([DDA, "--help"], capture_output=True, text=True)
-if "--live" not in r.stdout:
-    print("this dda has no --live: skipped")
-    sys.exit(77)
 
 # ---- plain HTTP ---------------------------------------------------------------------------
 dda, url = start_dda()
