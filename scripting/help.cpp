@@ -301,8 +301,8 @@ std::vector<std::pair<std::string, std::string>> api_reference_pages(lua_State* 
     if (s.owner == "dda.Model") model = s;
   const std::initializer_list<const char*> building_topics = {
       "Materials", "Geometry", "Blocks", "Edges", "Loads and fixed points", "Prescribed motion"};
-  const std::initializer_list<const char*> running_topics = {"Running and reading", "Monitors", "Frames",
-                                                             "ParaView files"};
+  const std::initializer_list<const char*> running_topics = {"Running and reading", "Background runs", "Monitors",
+                                                             "Frames", "ParaView files"};
   for (const std::string& topic : model.topics)
     DDA_ASSERT(std::count(building_topics.begin(), building_topics.end(), topic) +
                        std::count(running_topics.begin(), running_topics.end(), topic) ==

@@ -92,7 +92,10 @@ constexpr Name kFrameOptions[] = {
     {"height", "pixels, 16 to 8192", "720"},
     {"colormap", "`\"coolwarm\"` (blue compression, red tension) or `\"viridis\"`",
      "coolwarm for signed fields, viridis for magnitudes"},
-    {"range", "{min, max}: the colour range in SI units (Pa, m/s, m)", "±max|value| of the frame, or [0, max]"},
+    {"range",
+     "{min, max}: a fixed colour range in SI units (Pa, m/s, m); `\"frame\"`: each frame's own, ±max|value| or "
+     "[0, max]; in m:frames also `\"grow\"`: the widest so far",
+     "\"frame\""},
     {"view", "{x1, y1, x2, y2}: the world window shown (m)", "the model's bounds plus 4 %"},
     {"magnify", "deformation drawn magnified: initial + magnify × (current − initial)", "1"},
     {"edges", "draw the block outlines (joints)", "true"},
@@ -109,13 +112,24 @@ constexpr Name kFrameOptions[] = {
     {"scale", "a scale bar (and the magnification when magnify ≠ 1)", "true"},
     {"joints", "failed joints drawn in red over the edges", "false"}};
 
-render::FrameOptions read_frame_options(const Options& o) {
+// `grow` (sequences only): set when range = "grow" asks for a range that
+// widens with the data; nullptr refuses it (a single frame).
+render::FrameOptions read_frame_options(const Options& o, bool* grow = nullptr) {
   render::FrameOptions f;
   if (o.has("field")) f.field = render::parse_field(o.string("field"));
   f.width = static_cast<int>(o.integer("width", f.width));
   f.height = static_cast<int>(o.integer("height", f.height));
   if (o.has("colormap")) f.colormap = render::parse_colormap(o.string("colormap"));
-  if (o.has("range")) {
+  const bool range_named = o.push("range") == LUA_TSTRING;
+  lua_pop(o.state(), 1);
+  if (range_named) {
+    const std::string r = o.string("range");
+    if (r == "grow" && grow)
+      *grow = true;
+    else if (r != "frame")
+      fail(o.call(), ": option 'range' must be {min, max}", grow ? ", \"frame\" or \"grow\"" : " or \"frame\"",
+           ", got \"", r, "\"");
+  } else if (o.has("range")) {
     const Vec2 r = o.point("range");
     if (!(r.y() > r.x())) fail(o.call(), ": option 'range' must be {min, max} with min < max");
     f.range = render::ValueRange{r.x(), r.y()};
@@ -160,10 +174,7 @@ const std::vector<Name> kFramesOptions = joined(
      {"movie", "a movie made from the frames when the sequence ends, if ffmpeg is on the PATH (e.g. \"film.mp4\")",
       "none"},
      {"fps", "the movie's frames per second", "30"},
-     {"fixed",
-      "view, colour range and arrow scale fixed from the first frame (false: each frame its own), so a colour keeps "
-      "its meaning",
-      "true"},
+     {"fixed", "view and arrow scale fixed from the first frame (false: each frame its own)", "true"},
      {"prefix", "file name stem", "the field's name"},
      {"digits", "zero-padded width of the frame number", "5"},
      {"on_error", "`\"stop\"` the run when a frame cannot be written, or `\"continue\"` with a warning", "\"stop\""}},
@@ -189,7 +200,7 @@ int m_frames(lua_State* L) {
   check_not_busy(m, "m:frames");
   const Options o(L, 2, "m:frames", kFramesOptions);
   render::SequenceOptions so;
-  so.frame = read_frame_options(o);
+  so.frame = read_frame_options(o, &so.grow_range);
   so.folder = in_out_dir(L, o.string("folder", "frames"));
   so.prefix = o.string("prefix", "");
   so.every_steps = o.integer("every", 0);
@@ -469,7 +480,8 @@ void register_render(lua_State* L) {
        kFrameCallOptions},
       {"frames", guarded<m_frames>,
        "m:frames{...} → Frames\nA numbered PNG sequence during the run (every N steps or every dt of simulated "
-       "time), drawn on a worker thread; a movie at the end when ffmpeg is on the PATH.",
+       "time), drawn on a worker thread; view and arrow scale fixed from the first frame, colours by each frame's "
+       "own range unless one is declared; a movie at the end when ffmpeg is on the PATH.",
        kFramesOptions},
       {}};
   add_model_methods(L, model_methods, "Frames");

@@ -30,11 +30,15 @@ packages=(g++ cmake make pkg-config libeigen3-dev libtbb-dev liblua5.4-dev
           libcgal-dev
           # Run: the TrueType font frames and plots are labelled with (σ, τ);
           # without it a bitmap font spells Greek letters with Latin ones.
-          fonts-dejavu-core)
+          fonts-dejavu-core
+          # Run: the live view's HTTP server (dda run/console --live PORT).
+          libcpp-httplib-dev)
 # Tests: GoogleTest; VTK's own reader checks the ParaView (VTU/PVD) output
 # (python3-vtk9 pulls Qt, MPI and more: about 260 packages, so only here);
 # help2man makes the man page the install test installs.
-test_packages=(libgtest-dev python3-vtk9 help2man)
+test_packages=(libgtest-dev python3-vtk9 help2man
+               # Tests: the live view in a real browser (headless Chromium via chromedriver).
+               chromium chromium-driver)
 if [ $tests = 1 ]; then packages+=("${test_packages[@]}"); fi
 if [ "${WITH_FFMPEG:-0}" = 1 ]; then packages+=(ffmpeg); fi
 

@@ -2,6 +2,7 @@
 // each, --version. A command-line error prints its cause and one line of
 // usage (exit status 2); --help prints the options (the man page is made
 // from `dda --help`).
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -28,9 +29,13 @@ const char* kRunOptions =
     "  --list-params      run the script up to its first step and list the parameters it reads\n"
     "                     (name, default, value) instead of running it\n"
     "  --quiet            no progress line\n"
+    "  --live [ADDR:]PORT serve a live view of the run at http://ADDR:PORT/ (ADDR: 127.0.0.1, this\n"
+    "                     machine only; 0.0.0.0: every address; PORT 0: any free port)\n"
+    "  --realtime F       pace every run to F simulated seconds per wall-clock second (1: real time);\n"
+    "                     a run that cannot keep up says so\n"
     "  --frames N         every model writes a PNG frame every N steps into DIR/frames\n"
     "  --frames A:B:N     ... from step A to step B (B empty: to the end)\n"
-    "  --frame-range MIN,MAX  their colour range in SI units (default: from the first frame)\n"
+    "  --frame-range MIN,MAX  a fixed colour range in SI units (default: each frame's own)\n"
     "  --frame-view X1,Y1,X2,Y2  the world window they show in m (default: the first frame's)\n"
     "  --movie FILE       with --frames: DIR/FILE made with ffmpeg when the run ends (if on the PATH)\n"
     "  --frame-field F    the field of those frames: sigma_yy (default, as m:frame), sigma_xx,\n"
@@ -94,7 +99,7 @@ std::string unknown_option(const std::string& given) {
   static const char* const known[] = {
       "--out",        "--threads", "--set",         "--list-params", "--quiet", "--frames",           "--frame-range",
       "--frame-view", "--movie",   "--frame-field", "--frame-size",  "--vtu",   "--checkpoint-every", "--restart",
-      "--help"};
+      "--live",       "--realtime", "--help"};
   std::string text = "unknown option '" + given + "'";
   const char* best = nullptr;
   int best_distance = 3;  // suggest only a near miss
@@ -258,6 +263,17 @@ int main(int argc, char** argv) {
             "0.01s), got '%s'",
             v ? v : "");
       }
+    } else if (a == "--live") {
+      const char* v = value("--live");
+      if (!v || !*v) return bad("%s needs [ADDR:]PORT (e.g. 8080)", "--live");
+      opt.session.live_address = v;
+    } else if (a == "--realtime") {
+      const char* v = value("--realtime");
+      char* end = nullptr;
+      const double f = v ? std::strtod(v, &end) : 0;
+      if (!v || !*v || *end != '\0' || !(f > 0) || !std::isfinite(f))
+        return bad("--realtime needs a factor > 0 (1: simulated time at the wall clock's pace), got '%s'", v ? v : "");
+      opt.session.realtime = f;
     } else if (a == "--quiet" || a == "-q") {
       opt.session.quiet = true;
     } else if (a == "--list-params") {
