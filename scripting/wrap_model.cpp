@@ -180,7 +180,7 @@ void log_controls_once(lua_State* L, ScriptModel& m) {
   s.log.line(msg("model: ", m.world().block_count(), " blocks; controls:", text));
   const double g1 = m.world().controls().g1;
   s.log.line(g1 > 0 ? msg("time step: at most g1 = ", g1, " s, as the script gives")
-                    : "time step: g1 = 0, the default rule (docs/time_integration.md): " +
+                    : "time step: g1 = 0, the default rule (docs/time_step.md): " +
                           m.world().default_time_step().describe());
 }
 
@@ -677,7 +677,7 @@ void register_model(lua_State* L) {
        kRunOptions},
       {"settle", guarded<m_settle>,
        "m:settle{...} → {steps, ratio}\nBrings the model to equilibrium under gravity, initial stresses and the "
-       "loads' present values (static steps, the time held: docs/time_integration.md, \"Settling\"), then to "
+       "loads' present values (static steps, the time held: docs/time_step.md, \"Settling\"), then to "
        "rest: velocities zero, displacements counted from here, the energy budget anew. An error names the "
        "block furthest from balance when it does not settle within max_steps.",
        kSettleOptions, kSettleReturns},
@@ -690,7 +690,7 @@ void register_model(lua_State* L) {
       {"dt", guarded<m_dt>, "m:dt() → the next step's Δt (s)"},
       {"suggested_dt", guarded<m_suggested_dt>,
        "m:suggested_dt() → s\nThe upper step time g1 = 0 stands for: the default rule for this model as it is "
-       "now (docs/time_integration.md, \"The default time step\")."},
+       "now (docs/time_step.md, \"The default time step\")."},
       {"stats", guarded<m_stats>, "m:stats() → the last step's figures", {}, stats},
       {"energy",
        guarded<m_energy>,

@@ -62,7 +62,7 @@ const ControlSpec kControls[] = {
         "normal contact spring stiffness (N/m); 0 = 50 × the largest E"),
     number(
         "g1", [](Controls& c) -> double& { return c.g1; }, kZeroOrPositive,
-        "upper limit of the time step (s); 0 = the default rule (docs/time_integration.md, \"The default time "
+        "upper limit of the time step (s); 0 = the default rule (docs/time_step.md, \"The default time "
         "step\"): a model moved by gravity alone takes sqrt(h_min/|g|)/20, a dynamically loaded one the paper's "
         "Eqs. 1–3; the run log says which"),
     number(

@@ -23,7 +23,7 @@
 //
 // A further limit is one more term in default_time_step (time_step_rule.cpp):
 // its name, its Δt and its formula, taken into the minimum when it applies.
-// docs/time_integration.md ("The default time step") has the rule and why.
+// docs/time_step.md ("The default time step") has the rule and why.
 #include <string>
 #include <vector>
 
