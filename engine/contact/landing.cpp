@@ -64,9 +64,9 @@ int LandingLaw::slot_of(BlockId b, const Blocks& blocks, const VecX& d, const Ti
 }
 
 int LandingLaw::resolve(const Blocks& blocks, std::span<Contact> contacts, const ContactLinearisation& lin,
-                        OpenCloseState& s, const ContactParameters& p, const TimeScheme& scheme, const BlockTerms& own,
-                        std::span<const Mat3> elastic, std::span<const char> held, const Vec2& gravity,
-                        double restitution, VecX& d) {
+                        OpenCloseState& s, const ContactParameters& p, const TimeScheme& scheme,
+                        std::span<const Symmetric6> own_stiffness, std::span<const Mat3> elastic,
+                        std::span<const char> held, const Vec2& gravity, double restitution, VecX& d) {
   landings_.clear();
   slots_.clear();
   energy_ = {};
@@ -147,7 +147,7 @@ int LandingLaw::resolve(const Blocks& blocks, std::span<Contact> contacts, const
     slots_[l.vb].force += n * g.en_e + shear * g.es_e;
   }
   for (Slot& k : slots_) {
-    k.d_pre += own.k[k.block].full().ldlt().solve(k.force);
+    k.d_pre += own_stiffness[k.block].full().ldlt().solve(k.force);
     k.v_pre = scheme.end_velocity(k.d_pre, blocks.scheme_state(k.block));
     k.v = k.v_pre;
   }

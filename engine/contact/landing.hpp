@@ -51,12 +51,12 @@
 #include <span>
 #include <vector>
 
-#include "assembly/block_terms.hpp"
 #include "block/blocks.hpp"
 #include "block/time_scheme.hpp"
 #include "contact/contact.hpp"
 #include "contact/contact_detection.hpp"
 #include "contact/open_close.hpp"
+#include "core/symmetric6.hpp"
 
 namespace dda {
 
@@ -97,10 +97,12 @@ class LandingLaw {
  public:
   // The landing law on the accepted step d (changed in place; the caller
   // moves the blocks with it): the number of contacts that landed. Does
-  // nothing (and returns 0) when restitution < 0 (off). `held` per block: 1
-  // for an immovable block (Boundaries::held_blocks).
+  // nothing (and returns 0) when restitution < 0 (off). `own_stiffness` per
+  // block: the diagonal block of its own system (elasticity, inertia, loads
+  // and boundaries, no contacts); `held` per block: 1 for an immovable block
+  // (Boundaries::held_blocks).
   int resolve(const Blocks& blocks, std::span<Contact> contacts, const ContactLinearisation& lin, OpenCloseState& s,
-              const ContactParameters& p, const TimeScheme& scheme, const BlockTerms& own,
+              const ContactParameters& p, const TimeScheme& scheme, std::span<const Symmetric6> own_stiffness,
               std::span<const Mat3> elastic, std::span<const char> held, const Vec2& gravity, double restitution,
               VecX& d);
   const ImpactEnergy& energy() const { return energy_; }

@@ -432,7 +432,7 @@ void Stepper::land(WorldState& w) {
   const Controls& c = w.controls;
   if (c.restitution >= 0) solved_ = solution_;
   stats_.landings =
-      landing_.resolve(w.blocks, w.contacts, linearisation_, open_close_, contact_law_, scheme_, own_, elastic_,
+      landing_.resolve(w.blocks, w.contacts, linearisation_, open_close_, contact_law_, scheme_, own_.k, elastic_,
                        c.restitution < 0 ? std::vector<char>() : w.boundaries.held_blocks(w.blocks.count()), c.gravity,
                        c.restitution, solution_);
   if (stats_.landings == 0) return;
