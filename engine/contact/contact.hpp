@@ -10,6 +10,13 @@ namespace dda {
 
 enum class ContactState : std::uint8_t { Open, Sliding, Locked };
 
+// The contact law (the control contact_law; each law one file behind the
+// interface of contact_model.hpp): Holding (holding_law.hpp), the default,
+// in which friction holds a block that must hold at every step size; Shi
+// (shi_law.hpp), Shi's (1988) law as the paper has it, bit for bit the
+// engine's earlier results (the paper's figures, docs/validation.md).
+enum class ContactLaw { Holding, Shi };
+
 const char* to_string(ContactState s);
 
 struct Contact {
@@ -46,7 +53,7 @@ struct Contact {
   // averages only the N it has carried since; infinite once it closed again
   // after a brief opening: the same interface, its memory full); < 0, open
   // for that long after being closed, briefly so far; 0: none (open for
-  // longer, never closed, or no friction_lag). open_close.hpp.
+  // longer, never closed, or no friction_lag). friction_lag.hpp.
   double friction_normal = 0;
   double friction_age = 0;
 

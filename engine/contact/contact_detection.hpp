@@ -20,13 +20,13 @@
 
 #include "block/blocks.hpp"
 #include "contact/contact.hpp"
-#include "contact/contact_law.hpp"
+#include "contact/contact_kinematics.hpp"
 #include "contact/narrow_phase.hpp"
 #include "contact/transfer_watch.hpp"
 
 namespace dda {
 
-// The contacts' linearisation at the start of the step (contact_law.hpp), in
+// The contacts' linearisation at the start of the step (contact_kinematics.hpp), in
 // two arrays parallel to the contact list.
 struct ContactLinearisation {
   std::vector<ContactGradients> gradients;

@@ -14,7 +14,7 @@
 #include <string>
 
 #include "block/time_scheme.hpp"
-#include "contact/contact_law.hpp"
+#include "contact/contact.hpp"
 #include "core/material.hpp"
 #include "core/types.hpp"
 #include "solver/solver_settings.hpp"
@@ -47,12 +47,12 @@ struct Controls {
   // Poisson-loaded vertical joints of a wall) flip state on round-off and the
   // iteration never settles. (Under ContactLaw::Shi, friction decisions take
   // it too; under Holding those of contacts that are not intact joints have
-  // their own band, in the step's units: contact/contact_law.hpp,
+  // their own band, in the step's units: contact/holding_law.hpp,
   // contact_slack.)
   double contact_tolerance = 1e-9;
-  // The contact law (contact/contact_law.hpp): Holding, in which friction
-  // holds (the default); Shi, the law of Shi (1988) as the engine had it
-  // before, opt-in (a block that must hold on a slope creeps at small Δt;
+  // The contact law (contact/contact_model.hpp, one file each): Holding,
+  // in which friction holds (the default); Shi, the law of Shi (1988) as the
+  // engine had it before, opt-in (a block that must hold on a slope creeps at small Δt;
   // the paper's scripts pin it to reproduce the paper's figures).
   ContactLaw contact_law = ContactLaw::Holding;
   // Kelvin–Voigt damping of the blocks' strains, σ = E(ε + β·ε̇): β in

@@ -12,7 +12,7 @@
 #include <vector>
 
 #include "../scenes.hpp"
-#include "contact/contact_law.hpp"
+#include "contact/friction_lag.hpp"
 
 using namespace dda;
 
@@ -795,7 +795,7 @@ TEST(Friction, LaggedFrictionIsCarriedOverWhenTheContactsAreSearchedAgain) {
 // stops at v0²/(2 g tanφ). Bounds: the mean deceleration over the first
 // 0.05 s within 1 % of g·tanφ, the distance to the stop within 1 % of the
 // closed form (measured: within 0.33 % and 1.1e-5). Before friction iterated
-// while it lagged grossly (open_close.cpp, kGrossLag), the first steps'
+// while it lagged grossly (holding_law.cpp, kGrossLag), the first steps'
 // friction used an N many times the accepted one and the block decelerated
 // at 13 m/s² for 0.05 s: 1 m/s stopped after 0.051 m of 0.140 m.
 TEST(Friction, BlockSetSlidingOnAFlatFaceDeceleratesAtTheClosedFormRate) {
@@ -838,12 +838,12 @@ TEST(Friction, LaggedStrengthOfANewContactIsTheMeanOfWhatItCarried) {
   const std::vector<std::pair<double, double>> steps{
       // (Δt, N)
       {1e-4, 500}, {1e-4, 2000}, {3e-5, 800}, {1e-3, 1500}, {2e-3, 100}, {1e-5, 4000}, {5e-3, 1200}};
-  ContactIterate it;
+  LaggedFriction lag;
   double age = 0;
   std::vector<double> ends;
   for (const auto& [dt, n] : steps) {
-    it.lag_weight = age > 0 ? lag_weight(dt, age, t_r) : 1.0;  // a contact that closes takes its first N
-    it.lag_start = friction_normal(it, n);                     // N_f at the step's end
+    lag.weight = age > 0 ? lag_weight(dt, age, t_r) : 1.0;  // a contact that closes takes its first N
+    lag.start = friction_normal(lag, n);                    // N_f at the step's end
     age += dt;
     ends.push_back(age);
     double weighted = 0, before = 0;
@@ -852,7 +852,7 @@ TEST(Friction, LaggedStrengthOfANewContactIsTheMeanOfWhatItCarried) {
       before = ends[k];
     }
     const double mean = weighted / -std::expm1(-age / t_r);
-    EXPECT_NEAR(it.lag_start, mean, 1e-12 * mean) << "age " << age;
+    EXPECT_NEAR(lag.start, mean, 1e-12 * mean) << "age " << age;
   }
   EXPECT_EQ(lag_weight(1e-3, 0.5, 1e-6), 1.0);  // Δt ≫ t_r: no lag, to the last bit
 }
