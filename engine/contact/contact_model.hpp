@@ -7,8 +7,9 @@
 //
 //   begin_step      check          refuse controls the law cannot work with
 //                                  (and declare those it ignores)
-//   DetectContacts  (the contact list is searched; the law's state follows
-//                   each contact by its identity)
+//   DetectContacts  follow_search  the list was searched again: the law's
+//                                  per-contact history follows each contact
+//                                  by its identity
 //   step start      save_step      what a redo of the step restores
 //   attempt         start_attempt  the attempt's starting point (Δt)
 //   PredictStates   predict        a first guess from the warm start
@@ -147,6 +148,17 @@ class ContactModel {
   virtual ~ContactModel();
   virtual ContactLaw law() const = 0;
 
+  // ---- The law's per-contact history: what it keeps of its own for each
+  // contact from step to step (beside what every law keeps in Contact),
+  // parallel to the contact list. A law that keeps none needs neither call.
+  // A model made for a list of `contacts` contacts, which `previous` (another
+  // law's model; nullptr: none) ran until now: the history it starts from,
+  // the previous model's where that means the same to this law, else none.
+  virtual void take_over(const ContactModel* /*previous*/, std::size_t /*contacts*/) {}
+  // The list was searched again: contact i of the new list is contact
+  // previous[i] of the old one (-1: a new contact, with no history).
+  virtual void follow_search(std::span<const int> /*previous*/) {}
+
   // ---- begin_step
   // Throws dda::Error naming a control this law cannot work with here (with
   // these blocks, under this integrator), with the cure.
@@ -197,7 +209,9 @@ class ContactModel {
   // the impacted blocks' end-of-step state.
   virtual void commit(Blocks& blocks, std::span<Contact> contacts, const ContactLinearisation& lin) = 0;
 
-  // ---- Checkpoint: the law's own state carried from step to step.
+  // ---- Checkpoint: the law's own state carried from step to step, its
+  // per-contact history included (load: into a model that took over the
+  // restored list, take_over(nullptr, its size)).
   virtual void save(ArchiveWriter& /*ar*/) const {}
   virtual void load(ArchiveReader& /*ar*/) {}
 

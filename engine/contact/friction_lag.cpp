@@ -15,21 +15,22 @@ namespace {
 constexpr double kSameInterface = 0.3;
 }  // namespace
 
-void remember_friction(Contact& c, const LaggedFriction& lag, double dt, double t_r) {
-  const double age = c.friction_age;
+void remember_friction(FrictionMemory& m, ContactState state, double normal_force, const LaggedFriction& lag, double dt,
+                       double t_r) {
+  const double age = m.age;
   if (!(t_r > 0)) {
-    c.friction_normal = 0;
-    c.friction_age = 0;
-  } else if (c.state != ContactState::Open) {
-    c.friction_normal = friction_normal(lag, c.normal_force);
+    m.normal = 0;
+    m.age = 0;
+  } else if (state != ContactState::Open) {
+    m.normal = friction_normal(lag, normal_force);
     // One step older; closed again after a brief opening: the same
     // interface, its memory full (w = 1 − exp(−Δt/t_r) from now on).
-    c.friction_age = age > 0 ? age + dt : age < 0 ? std::numeric_limits<double>::infinity() : dt;
+    m.age = age > 0 ? age + dt : age < 0 ? std::numeric_limits<double>::infinity() : dt;
   } else {
     // Open: how long, while that is brief (kSameInterface).
     const double open_for = (age < 0 ? -age : 0.0) + dt;
-    c.friction_normal = 0;
-    c.friction_age = age != 0 && open_for < kSameInterface * t_r ? -open_for : 0.0;
+    m.normal = 0;
+    m.age = age != 0 && open_for < kSameInterface * t_r ? -open_for : 0.0;
   }
 }
 

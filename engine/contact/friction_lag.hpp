@@ -3,18 +3,36 @@
 // seconds; 0: none; docs/contacts.md): the normal force N_f a contact's
 // friction strength acts with follows N as the simplified Prakash–Clifton
 // law over the interface's own life. Both penalty laws apply it
-// (penalty_contacts.hpp); the memory a contact carries from step to step is
-// Contact::friction_normal and Contact::friction_age.
+// (penalty_contacts.hpp), each contact's memory (FrictionMemory) their
+// per-contact history.
 #include <cmath>
 
 #include "contact/contact.hpp"
 
 namespace dda {
 
+// What a contact carries from step to step: the normal force N_f its
+// friction strength acted with at the end of the last accepted step, the
+// mean of its N over its memory t_r; and its memory's age (s): > 0, how long
+// the interface has been closed (N_f averages only the N it has carried
+// since; infinite once it closed again after a brief opening: the same
+// interface, its memory full); < 0, open for that long after being closed,
+// briefly so far; 0: none (open for longer, never closed, or no
+// friction_lag).
+struct FrictionMemory {
+  double normal = 0;
+  double age = 0;
+
+  template <class Archive>
+  void fields(Archive& ar) {
+    ar(normal, age);
+  }
+};
+
 // A contact's lag in an attempt at a step: the lagged normal force at the
 // step start, N_f0, and the step's weight w of the new N (lag_weight below);
 // w = 1 (no lag) without friction_lag and for a contact with no lagged force
-// yet (Contact::friction_normal).
+// yet (FrictionMemory).
 struct LaggedFriction {
   double start = 0;
   double weight = 1;
@@ -38,10 +56,10 @@ inline double lag_weight(double dt, double age, double t_r) {
   return std::expm1(-dt / t_r) / std::expm1(-(age + dt) / t_r);
 }
 
-// The lag of contact c in an attempt of step dt (t_r: friction_lag, 0 none).
-inline LaggedFriction lagged_friction(const Contact& c, double dt, double t_r) {
-  if (c.state != ContactState::Open && t_r > 0 && c.friction_age > 0)
-    return {c.friction_normal, lag_weight(dt, c.friction_age, t_r)};
+// The lag of a contact in `state` with memory m in an attempt of step dt
+// (t_r: friction_lag, 0 none).
+inline LaggedFriction lagged_friction(const FrictionMemory& m, ContactState state, double dt, double t_r) {
+  if (state != ContactState::Open && t_r > 0 && m.age > 0) return {m.normal, lag_weight(dt, m.age, t_r)};
   return {};
 }
 
@@ -72,7 +90,9 @@ inline double friction_normal(const LaggedFriction& lag, double n) {
 // again after a brief opening is the same interface: from its first N with
 // the full memory t_r, so that a sliding block's contacts that open and
 // close in a flutter do not follow N at once each time they close. Without
-// friction_lag (t_r = 0) the contact holds none.
-void remember_friction(Contact& c, const LaggedFriction& lag, double dt, double t_r);
+// friction_lag (t_r = 0) the contact holds none. `state` and `normal_force`:
+// the contact's at the step's end.
+void remember_friction(FrictionMemory& m, ContactState state, double normal_force, const LaggedFriction& lag, double dt,
+                       double t_r);
 
 }  // namespace dda

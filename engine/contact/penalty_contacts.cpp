@@ -4,6 +4,8 @@
 #include <cmath>
 
 #include "contact/landing.hpp"
+#include "core/archive.hpp"
+#include "core/error.hpp"
 #include "core/parallel.hpp"
 
 namespace dda {
@@ -11,19 +13,48 @@ namespace dda {
 PenaltyContacts::PenaltyContacts() : landing_(std::make_unique<LandingLaw>()) {}
 PenaltyContacts::~PenaltyContacts() = default;
 
+// Both penalty laws keep the same history: another's is taken as it is.
+void PenaltyContacts::take_over(const ContactModel* previous, std::size_t contacts) {
+  const auto* penalty = dynamic_cast<const PenaltyContacts*>(previous);
+  if (penalty && penalty->memory_.size() == contacts) {
+    memory_ = penalty->memory_;
+  } else {
+    memory_.assign(contacts, FrictionMemory{});
+  }
+}
+
+void PenaltyContacts::follow_search(std::span<const int> previous) {
+  scratch_memory_.resize(previous.size());
+  parallel_for_each(
+      previous.size(),
+      [&](std::size_t i) { scratch_memory_[i] = previous[i] >= 0 ? memory_[previous[i]] : FrictionMemory{}; }, 1024);
+  memory_.swap(scratch_memory_);
+}
+
 void PenaltyContacts::check(const ContactParameters& p, const Blocks& blocks) const {
   validate_landing_law(p.restitution, p.integrator, blocks);
 }
 
 void PenaltyContacts::save_step(std::span<const Contact> contacts) {
   saved_.resize(contacts.size());
+  saved_memory_.resize(contacts.size());
   parallel_for_each(
-      contacts.size(), [&](std::size_t i) { saved_[i] = iteration_state(contacts[i]); }, 1024);
+      contacts.size(),
+      [&](std::size_t i) {
+        saved_[i] = iteration_state(contacts[i]);
+        saved_memory_[i] = memory_[i];
+      },
+      1024);
 }
 
 void PenaltyContacts::restore_step(std::span<Contact> contacts) {
   parallel_for_each(
-      contacts.size(), [&](std::size_t i) { set_iteration_state(contacts[i], saved_[i]); }, 1024);
+      contacts.size(),
+      [&](std::size_t i) {
+        set_iteration_state(contacts[i], saved_[i]);
+        memory_[i] = saved_memory_[i];
+      },
+      1024);
 }
 
 // An attempt's starting point: each contact's shear offset, the normal force
@@ -38,7 +69,7 @@ void PenaltyContacts::start_attempt(std::span<const Contact> contacts, const Con
       [&](std::size_t i) {
         const Contact& c = contacts[i];
         iterate_[i] = {lin.offsets[i].s0, c.normal_force, lin.offsets[i].s0, c.state != ContactState::Open,
-                       lagged_friction(c, dt, p_.friction_lag)};
+                       lagged_friction(memory_[i], c.state, dt, p_.friction_lag)};
       },
       1024);
 }
@@ -277,7 +308,22 @@ void PenaltyContacts::commit(Blocks& blocks, std::span<Contact> contacts, const 
   if (!(t_r > 0) && !lagged_friction_held_) return;
   lagged_friction_held_ = t_r > 0;
   parallel_for_each(
-      contacts.size(), [&](std::size_t i) { remember_friction(contacts[i], iterate_[i].lag, dt_, t_r); }, 1024);
+      contacts.size(),
+      [&](std::size_t i) {
+        remember_friction(memory_[i], contacts[i].state, contacts[i].normal_force, iterate_[i].lag, dt_, t_r);
+      },
+      1024);
+}
+
+void PenaltyContacts::save(ArchiveWriter& ar) const { ar(memory_); }
+
+void PenaltyContacts::load(ArchiveReader& ar) {
+  const std::size_t contacts = memory_.size();
+  ar(memory_);
+  if (memory_.size() != contacts)
+    throw Error(msg(ar.what(), " is damaged: the contact law's memory of ", memory_.size(), " contacts for a list of ",
+                    contacts));
+  lagged_friction_held_ = true;  // the restored contacts may hold some
 }
 
 }  // namespace dda

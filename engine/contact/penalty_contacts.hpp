@@ -63,6 +63,8 @@ class PenaltyContacts : public ContactModel {
   PenaltyContacts();
   ~PenaltyContacts() override;
 
+  void take_over(const ContactModel* previous, std::size_t contacts) override;
+  void follow_search(std::span<const int> previous) override;
   void check(const ContactParameters& p, const Blocks& blocks) const override;
   void save_step(std::span<const Contact> contacts) override;
   void restore_step(std::span<Contact> contacts) override;
@@ -77,6 +79,11 @@ class PenaltyContacts : public ContactModel {
                       VecX& d) override;
   const ImpactEnergy& impact_energy() const override;
   void commit(Blocks& blocks, std::span<Contact> contacts, const ContactLinearisation& lin) override;
+  void save(ArchiveWriter& ar) const override;
+  void load(ArchiveReader& ar) override;
+
+  // The friction lag's memory of each contact (for tests).
+  std::span<const FrictionMemory> friction_memory() const { return memory_; }
 
  protected:
   // ---- What each law says (its own file)
@@ -126,8 +133,13 @@ class PenaltyContacts : public ContactModel {
   ContactMotion motion(const ContactGradients& k, const ContactOffsets& o, const VecX& d, const Contact& c,
                        const ContactIterate& it) const;
 
-  std::vector<ContactIterationState> saved_;  // at the start of the step, for a redo
-  double dt_ = 0;                             // the attempt's step (s)
+  // The per-contact history: the friction lag's memory (friction_lag.hpp).
+  std::vector<FrictionMemory> memory_;
+  std::vector<FrictionMemory> scratch_memory_;  // follow_search's
+  // At the start of the step, for a redo.
+  std::vector<ContactIterationState> saved_;
+  std::vector<FrictionMemory> saved_memory_;
+  double dt_ = 0;  // the attempt's step (s)
   // Whether a contact may hold a lagged friction force (the last commit left
   // one, or the contacts came from elsewhere: a checkpoint, another law).
   // Without friction_lag and with none held, a commit has nothing to drop.

@@ -9,6 +9,7 @@
 //   │                        linear solver's backend, then the solve regime
 //   │                        (solve_regime.hpp) from that backend's last step
 //   ├─ DetectContacts        contact/contact_detection: search or reuse the list
+//   │                        (the contact law's history follows a search)
 //   ├─ attempt, until one is accepted:
 //   │  ├─ Assemble           assembly/block_terms, loading/, boundary/ at t + Δt
 //   │  ├─ PredictStates      warm start; the contact law's first guess
@@ -180,8 +181,14 @@ void Stepper::derive_material_constants(const WorldState& w) {
   scheme_.mesh_mass = c.mesh_mass;
 }
 
-ContactModel& Stepper::contact_model(const Controls& c) {
-  if (!contact_model_ || contact_model_->law() != c.contact_law) contact_model_ = make_contact_model(c.contact_law);
+// A model made for another law takes over the contacts' history where it
+// means the same to it.
+ContactModel& Stepper::contact_model(const WorldState& w) {
+  if (!contact_model_ || contact_model_->law() != w.controls.contact_law) {
+    std::unique_ptr<ContactModel> next = make_contact_model(w.controls.contact_law);
+    next->take_over(contact_model_.get(), w.contacts.size());
+    contact_model_ = std::move(next);
+  }
   return *contact_model_;
 }
 
@@ -198,7 +205,7 @@ void Stepper::set_up_contact_model(const WorldState& w) {
   p.friction_lag = c.friction_lag;
   p.restitution = c.restitution;
   p.integrator = c.integrator;
-  ContactModel& model = contact_model(c);
+  ContactModel& model = contact_model(w);
   model.check(p, w.blocks);
   model.set_parameters(p);
 }
@@ -244,8 +251,9 @@ void Stepper::detect_contacts(WorldState& w) {
   StageTimer timer(stats_.profile, Stage::DetectContacts);
   const Controls& c = w.controls;
   const double range = detection_.range(c.contact_range, 2.5 * c.g2 * w.half_height);
-  if (detection_.detect(w.blocks, range, w.contacts, linearisation_)) {
+  if (detection_.detect(w.blocks, range, w.contacts, linearisation_, previous_contact_)) {
     stats_.contacts_searched = true;
+    contact_model_->follow_search(previous_contact_);
     // The system's rows: which contacts couple which blocks.
     system_.set_contacts(static_cast<int>(w.blocks.count()), w.contacts);
   }

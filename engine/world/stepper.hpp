@@ -32,6 +32,8 @@ class Stepper {
   // The system of the last open-close iteration (A·D = F).
   const ContactOperator& system() const { return system_; }
   const VecX& rhs() const { return rhs_; }
+  // The contact law of the last step (nullptr before the first).
+  const ContactModel* current_contact_model() const { return contact_model_.get(); }
 
   // What a checkpoint holds of the Stepper (core/archive.hpp): what one step
   // leaves for the next besides the WorldState, the contact law's own state
@@ -52,10 +54,13 @@ class Stepper {
     } else if (solver_) {
       solver_->save_state(ar);
     }
-    if constexpr (Archive::reading)
-      contact_model(w.controls).load(ar);
-    else
-      contact_model(w.controls).save(ar);
+    ar.section("contact law");
+    if constexpr (Archive::reading) {
+      contact_model_ = nullptr;  // the restored contacts' history is the file's
+      contact_model(w).load(ar);
+    } else {
+      contact_model(w).save(ar);
+    }
   }
 
  private:
@@ -79,7 +84,7 @@ class Stepper {
   void resolve_impacts(WorldState& w);
   void finish_step(WorldState& w);
   std::string divergence_message(const WorldState& w) const;  // names the block
-  ContactModel& contact_model(const Controls& c);             // the model of c.contact_law
+  ContactModel& contact_model(const WorldState& w);           // the model of w.controls.contact_law
 
   // Set once per step by begin_step.
   double g0_ = 0, g1_ = 0;  // resolved (automatic values filled in)
@@ -93,6 +98,7 @@ class Stepper {
   // Kept from step to step.
   ContactDetection detection_;
   ContactLinearisation linearisation_;  // per contact
+  std::vector<int> previous_contact_;   // per contact: its index before the last search (-1: new)
   // The contact law (contact/contact_model.hpp): its per-contact state, what
   // a redo restores, what the contacts add to the system, its impacts.
   std::unique_ptr<ContactModel> contact_model_;

@@ -75,4 +75,35 @@ TEST(ContactModel, AControlALawDoesNotReadChangesNothingUnderIt) {
   EXPECT_GT(declared, 0);  // (the holding law's contact_tolerance)
 }
 
+// A law's per-contact history follows the contacts into the model of
+// another law where it means the same: the friction lag's memory (both
+// penalty laws keep it) of a block sliding on 40° / φ = 25° (gravity on at
+// once, friction_lag = 3 ms, 30 steps of 1e-4 s under "holding"), then one
+// step under "shi": each contact closed through it is one step older.
+// Reference: its age before plus the step's Δt, exactly; a memory dropped
+// at the switch would be a new interface, its age the step's Δt alone.
+TEST(ContactModel, TheHistoryFollowsTheContactsIntoAnotherLaw) {
+  World w;
+  test::block_on_incline(w, deg_to_rad(40), 25);
+  Controls& c = w.controls();
+  c.contact_law = ContactLaw::Holding;
+  c.friction_lag = 3e-3;
+  c.g1 = 1e-4;
+  for (int k = 0; k < 30; ++k) w.step();
+  std::vector<double> age;
+  for (std::size_t i = 0; i < w.contacts().size(); ++i) age.push_back(test::friction_memory(w, i).age);
+  c.contact_law = ContactLaw::Shi;
+  const StepStats step = w.step();
+  ASSERT_EQ(w.contact_model()->law(), ContactLaw::Shi);
+  ASSERT_FALSE(step.contacts_searched);
+  ASSERT_EQ(step.step_cuts, 0);
+  int closed = 0;
+  for (std::size_t i = 0; i < w.contacts().size(); ++i) {
+    if (w.contacts()[i].state == ContactState::Open || !(age[i] > 0)) continue;
+    ++closed;
+    EXPECT_EQ(test::friction_memory(w, i).age, age[i] + step.dt) << "contact " << i;
+  }
+  EXPECT_GE(closed, 1);
+}
+
 }  // namespace
