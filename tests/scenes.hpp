@@ -6,9 +6,16 @@
 #include <cmath>
 #include <vector>
 
+#include "contact/penalty_contacts.hpp"
 #include "world/world.hpp"
 
 namespace dda::test {
+
+// The friction lag's memory of contact i after the last step (the penalty
+// laws' per-contact history: contact/friction_lag.hpp).
+inline const FrictionMemory& friction_memory(const World& w, std::size_t i) {
+  return dynamic_cast<const PenaltyContacts&>(*w.contact_model()).friction_memory()[i];
+}
 
 // The rectangle with lower-left corner (x0, y0), width w and height h,
 // counter-clockwise.

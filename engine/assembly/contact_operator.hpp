@@ -23,7 +23,7 @@
 #include <utility>
 #include <vector>
 
-#include "contact/contact_law.hpp"
+#include "contact/contact_kinematics.hpp"
 #include "core/symmetric6.hpp"
 #include "solver/block_sparse_matrix.hpp"
 #include "solver/symmetric_block_matrix.hpp"

@@ -1,7 +1,8 @@
 #pragma once
-// A vertex-edge contact between two blocks, with the state that survives from
-// step to step (open / sliding / locked, intact joint or failed, the locked
-// shear reference point).
+// A vertex-edge contact between two blocks, with the state every contact law
+// keeps and reports from step to step (open / sliding / locked, intact joint
+// or failed, the shear reference point, the forces). What a law keeps of its
+// own for a contact lives in the law's model (contact_model.hpp).
 #include <cstdint>
 
 #include "core/types.hpp"
@@ -9,6 +10,13 @@
 namespace dda {
 
 enum class ContactState : std::uint8_t { Open, Sliding, Locked };
+
+// The contact law (the control contact_law; each law one file behind the
+// interface of contact_model.hpp): Holding (holding_law.hpp), the default,
+// in which friction holds a block that must hold at every step size; Shi
+// (shi_law.hpp), Shi's (1988) law as the paper has it, bit for bit the
+// engine's earlier results (the paper's figures, docs/validation.md).
+enum class ContactLaw { Holding, Shi };
 
 const char* to_string(ContactState s);
 
@@ -44,17 +52,6 @@ struct Contact {
   bool ref_valid = false;
   // Sign of the last sliding direction along the edge (for friction).
   std::int8_t slide_sign = 0;
-  // Friction that lags the normal force (control friction_lag): the normal
-  // force N_f the contact's friction strength acted with at the end of the
-  // last accepted step, the mean of its N over its memory t_r; and its
-  // memory's age (s): > 0, how long the interface has been closed (N_f
-  // averages only the N it has carried since; infinite once it closed again
-  // after a brief opening: the same interface, its memory full); < 0, open
-  // for that long after being closed, briefly so far; 0: none (open for
-  // longer, never closed, or no friction_lag). open_close.hpp.
-  double friction_normal = 0;
-  double friction_age = 0;
-
   // Results of the last converged solve (compression positive), for callers.
   double normal_force = 0;  // N (per unit thickness)
   double shear_force = 0;   // N
@@ -64,24 +61,24 @@ struct Contact {
   template <class Archive>
   void fields(Archive& ar) {
     ar(vblock, eblock, vertex, edge, joint, state, intact, bonded, length, scale, ref_param, ref_valid, slide_sign,
-       friction_normal, friction_age, normal_force, shear_force, penetration);
+       normal_force, shear_force, penetration);
   }
 };
 
 // What the open-close iteration changes in a contact: carried over when the
 // contact list is searched again, kept at the start of a step for a redo
-// (a quarter of a whole Contact: memory counts on models of 10^5 blocks).
+// (a fifth of a whole Contact: memory counts on models of 10^5 blocks).
 // The shear force and penetration are left out: every solve recomputes them
 // before anyone reads them.
 struct ContactIterationState {
-  double ref_param, normal_force, friction_normal, friction_age;
+  double ref_param, normal_force;
   ContactState state;
   bool intact, ref_valid;
   std::int8_t slide_sign;
 };
 
 inline ContactIterationState iteration_state(const Contact& c) {
-  return {c.ref_param, c.normal_force, c.friction_normal, c.friction_age, c.state, c.intact, c.ref_valid, c.slide_sign};
+  return {c.ref_param, c.normal_force, c.state, c.intact, c.ref_valid, c.slide_sign};
 }
 
 inline void set_iteration_state(Contact& c, const ContactIterationState& s) {
@@ -91,8 +88,6 @@ inline void set_iteration_state(Contact& c, const ContactIterationState& s) {
   c.intact = s.intact;
   c.ref_valid = s.ref_valid;
   c.slide_sign = s.slide_sign;
-  c.friction_normal = s.friction_normal;
-  c.friction_age = s.friction_age;
 }
 
 inline bool same_identity(const Contact& a, const Contact& b) {

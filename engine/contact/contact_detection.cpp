@@ -42,7 +42,7 @@ bool ContactDetection::list_is_stale(const Blocks& blocks, double range) const {
 }
 
 bool ContactDetection::detect(const Blocks& blocks, double range, std::vector<Contact>& contacts,
-                              ContactLinearisation& lin) {
+                              ContactLinearisation& lin, std::vector<int>& previous) {
   const BlockPolygons polys = blocks.polygons();
   // Contact i's linearisation, into its two arrays (sized by the caller).
   auto linearise = [&](std::size_t i, const Contact& c) -> const ContactOffsets& {
@@ -85,6 +85,7 @@ bool ContactDetection::detect(const Blocks& blocks, double range, std::vector<Co
   std::sort(order.begin(), order.end(), [&](int x, int y) { return identity_less(contacts[x], contacts[y]); });
   lin.gradients.resize(found.size());
   lin.offsets.resize(found.size());
+  previous.resize(found.size());
   parallel_for_each(found.size(), [&](std::size_t i) {
     Contact& c = found[i];
     const auto it = std::lower_bound(order.begin(), order.end(), c,
@@ -94,6 +95,7 @@ bool ContactDetection::detect(const Blocks& blocks, double range, std::vector<Co
       set_iteration_state(c, iteration_state(contacts[*it]));  // (penetration: set below)
       c.bonded = contacts[*it].bonded;
     }
+    previous[i] = known ? *it : -1;
     const ContactOffsets& k = linearise(i, c);
     if (!known) {
       const bool touching = k.d0 >= -1e-9 * k.edge_length;

@@ -20,13 +20,13 @@
 
 #include "block/blocks.hpp"
 #include "contact/contact.hpp"
-#include "contact/contact_law.hpp"
+#include "contact/contact_kinematics.hpp"
 #include "contact/narrow_phase.hpp"
 #include "contact/transfer_watch.hpp"
 
 namespace dda {
 
-// The contacts' linearisation at the start of the step (contact_law.hpp), in
+// The contacts' linearisation at the start of the step (contact_kinematics.hpp), in
 // two arrays parallel to the contact list.
 struct ContactLinearisation {
   std::vector<ContactGradients> gradients;
@@ -50,8 +50,11 @@ class ContactDetection {
   // Searches again when the list is stale (new contacts start locked when
   // touching, open otherwise; intact when touching before the first step;
   // known ones keep their iteration state), then linearises every contact
-  // and sets its penetration. Returns whether it searched.
-  bool detect(const Blocks& blocks, double range, std::vector<Contact>& contacts, ContactLinearisation& linearisation);
+  // and sets its penetration. Returns whether it searched; if it did,
+  // `previous` says where each contact of the new list was in the old one
+  // (-1: new), for the contact law's per-contact history.
+  bool detect(const Blocks& blocks, double range, std::vector<Contact>& contacts, ContactLinearisation& linearisation,
+              std::vector<int>& previous);
   // The accepted step's rotations, for the redetection rule.
   void add_rotations(const VecX& d);
 

@@ -8,7 +8,7 @@
 #include "block/blocks.hpp"
 #include "contact/contact.hpp"
 #include "contact/contact_detection.hpp"
-#include "contact/open_close.hpp"
+#include "contact/contact_model.hpp"
 
 namespace dda {
 

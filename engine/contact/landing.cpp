@@ -63,10 +63,13 @@ int LandingLaw::slot_of(BlockId b, const Blocks& blocks, const VecX& d, const Ti
   return slot_index_[b];
 }
 
-int LandingLaw::resolve(const Blocks& blocks, std::span<Contact> contacts, const ContactLinearisation& lin,
-                        OpenCloseState& s, const ContactParameters& p, const TimeScheme& scheme, const BlockTerms& own,
-                        std::span<const Mat3> elastic, std::span<const char> held, const Vec2& gravity,
-                        double restitution, VecX& d) {
+int LandingLaw::resolve(std::span<Contact> contacts, const ContactLinearisation& lin,
+                        std::span<ContactIterate> iterates, const ContactParameters& p, const ImpactInputs& in,
+                        VecX& d) {
+  const Blocks& blocks = in.blocks;
+  const TimeScheme& scheme = in.scheme;
+  const std::span<const char> held = in.held;
+  const double restitution = p.restitution;
   landings_.clear();
   slots_.clear();
   energy_ = {};
@@ -78,11 +81,11 @@ int LandingLaw::resolve(const Blocks& blocks, std::span<Contact> contacts, const
   candidates_.clear();
   for (std::size_t i = 0; i < contacts.size(); ++i) {
     const Contact& c = contacts[i];
-    if (c.intact || s.iterate[i].closed_at_start) continue;
+    if (c.intact || iterates[i].closed_at_start) continue;
     if (held[c.vblock] && held[c.eblock]) continue;
     const ContactGradients& g = lin.gradients[i];
     const double approach = scheme.gg * (g.en_v.dot(blocks.velocity[c.vblock]) + g.en_e.dot(blocks.velocity[c.eblock]));
-    if (!(approach > landing_speed_threshold(gravity, dt, 0))) continue;  // the cheaper test first
+    if (!(approach > landing_speed_threshold(in.gravity, dt, 0))) continue;  // the cheaper test first
     // The slowest ring of the contact: on its spring, 1/ω = √(m/k_n) (m its
     // effective rigid mass), or in either block, a wave's time across it,
     // √A/c = √(mass/E') (c² = E'/ρ).
@@ -91,8 +94,8 @@ int LandingLaw::resolve(const Blocks& blocks, std::span<Contact> contacts, const
                                 nb.dot(rigid_inverse_mass(blocks, c.eblock, held[c.eblock], scheme.mesh_mass) * nb);
     double ring_time = 1 / std::sqrt(contact_springs(c, p).kn * inverse_mass);
     for (const BlockId b : {c.vblock, c.eblock})
-      ring_time = std::max(ring_time, std::sqrt(blocks.mass[b] / elastic[blocks.material[b]](0, 0)));
-    if (!(approach > landing_speed_threshold(gravity, dt, ring_time))) continue;
+      ring_time = std::max(ring_time, std::sqrt(blocks.mass[b] / in.elastic[blocks.material[b]](0, 0)));
+    if (!(approach > landing_speed_threshold(in.gravity, dt, ring_time))) continue;
     Landing l{};
     l.contact = static_cast<int>(i);
     l.approach = approach;
@@ -136,18 +139,18 @@ int LandingLaw::resolve(const Blocks& blocks, std::span<Contact> contacts, const
   }
   for (Landing& l : landings_) {
     const Contact& c = contacts[l.contact];
-    const ContactIterate& it = s.iterate[l.contact];
+    const ContactIterate& it = iterates[l.contact];
     const ContactGradients& g = lin.gradients[l.contact];
     const ContactSprings k = contact_springs(c, p);
     const double n = c.normal_force;
     const double shear = c.state == ContactState::Locked
                              ? k.ks * it.shear
-                             : c.slide_sign * friction_normal(it, it.solved_normal) * p.tan_friction[c.joint];
+                             : c.slide_sign * friction_normal(it.lag, it.solved_normal) * p.tan_friction[c.joint];
     slots_[l.va].force += n * g.en_v + shear * g.es_v;
     slots_[l.vb].force += n * g.en_e + shear * g.es_e;
   }
   for (Slot& k : slots_) {
-    k.d_pre += own.k[k.block].full().ldlt().solve(k.force);
+    k.d_pre += in.own_stiffness[k.block].full().ldlt().solve(k.force);
     k.v_pre = scheme.end_velocity(k.d_pre, blocks.scheme_state(k.block));
     k.v = k.v_pre;
   }
@@ -198,7 +201,7 @@ int LandingLaw::resolve(const Blocks& blocks, std::span<Contact> contacts, const
   // changed (the contacts first: their friction as booked is the solved d's).
   for (const Landing& l : landings_) {
     Contact& c = contacts[l.contact];
-    ContactIterate& it = s.iterate[l.contact];
+    ContactIterate& it = iterates[l.contact];
     const ContactGradients& g = lin.gradients[l.contact];
     const ContactSprings k = contact_springs(c, p);
     // The springs' energy as the budget counted it (world/energy.cpp) ...
@@ -234,13 +237,13 @@ int LandingLaw::resolve(const Blocks& blocks, std::span<Contact> contacts, const
     const Vec6 v_solved = scheme.end_velocity(d_solved, blocks.scheme_state(b));
     k.end = scheme.end_state_after_impact(k.v, blocks.scheme_state(b), k.mass);
     auto kinetic = [&](const Vec6& v) { return 0.5 * v.dot(k.mass * v); };
-    const Mat3& e = elastic[blocks.material[b]];
+    const Mat3& e = in.elastic[blocks.material[b]];
     const Mat3 c = e.inverse();
     auto strain = [&](const Vec6& db) {
       const Vec3 sigma = blocks.stress[b] + e * db.tail<3>();
       return 0.5 * blocks.area[b] * sigma.dot(c * sigma);
     };
-    auto lift = [&](const Vec6& db) { return blocks.mass[b] * gravity.dot(db.head<2>()); };
+    auto lift = [&](const Vec6& db) { return blocks.mass[b] * in.gravity.dot(db.head<2>()); };
     energy_.kinetic += kinetic(k.v) - kinetic(v_solved);
     energy_.strain += strain(d_new) - strain(d_solved);
     energy_.gravity += lift(d_new) - lift(d_solved);
@@ -321,14 +324,12 @@ void LandingLaw::write_end_states(Blocks& blocks) const {
 }
 
 void LandingLaw::unload_shear_springs(std::span<Contact> contacts, const ContactLinearisation& lin,
-                                      const OpenCloseState& s, ContactLaw law) const {
+                                      std::span<const ContactIterate> iterates, bool sliding_keeps_reference) const {
   for (const Landing& l : landings_) {
     Contact& c = contacts[l.contact];
-    // Shi's law keeps no reference for a sliding contact (it slides on from
-    // where it is).
-    if (c.state == ContactState::Open || (law == ContactLaw::Shi && c.state != ContactState::Locked)) continue;
+    if (c.state == ContactState::Open || (!sliding_keeps_reference && c.state != ContactState::Locked)) continue;
     const ContactOffsets& o = lin.offsets[l.contact];
-    c.ref_param = o.param + s.iterate[l.contact].shear / o.edge_length;
+    c.ref_param = o.param + iterates[l.contact].shear / o.edge_length;
     c.ref_valid = true;
   }
 }

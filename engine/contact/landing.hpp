@@ -51,12 +51,12 @@
 #include <span>
 #include <vector>
 
-#include "assembly/block_terms.hpp"
 #include "block/blocks.hpp"
 #include "block/time_scheme.hpp"
 #include "contact/contact.hpp"
 #include "contact/contact_detection.hpp"
-#include "contact/open_close.hpp"
+#include "contact/contact_model.hpp"
+#include "contact/penalty_contacts.hpp"
 
 namespace dda {
 
@@ -78,39 +78,23 @@ void validate_landing_law(double restitution, Integrator integrator, const Block
 // within a ring or two, with a bounce no larger than the ring itself.
 double landing_speed_threshold(const Vec2& gravity, double dt, double ring_time);
 
-// What the impacts changed, for the energy budget (J/m). The held terms and
-// gravity's work as the solve left them, to the step's end after the
-// impacts (kinetic, strain, contact, gravity); and what the solve's landing
-// springs did within the step (solved, against the step without them: the
-// blocks' kinetic and strain energy, the springs' energy, gravity's and
-// friction's work), which the budget had put in the residual and in
-// friction. The impact's work is their balance: the residual keeps the time
-// integrator's own.
-struct ImpactEnergy {
-  double kinetic = 0, strain = 0, contact = 0, gravity = 0;  // after − solved
-  double from_solve = 0;  // solved − without the landing springs, less gravity's work
-  double friction = 0;    // the landing contacts' friction work as booked (≤ 0)
-  double work() const { return kinetic + strain + contact - gravity + from_solve; }
-};
-
 class LandingLaw {
  public:
   // The landing law on the accepted step d (changed in place; the caller
   // moves the blocks with it): the number of contacts that landed. Does
-  // nothing (and returns 0) when restitution < 0 (off). `held` per block: 1
-  // for an immovable block (Boundaries::held_blocks).
-  int resolve(const Blocks& blocks, std::span<Contact> contacts, const ContactLinearisation& lin, OpenCloseState& s,
-              const ContactParameters& p, const TimeScheme& scheme, const BlockTerms& own,
-              std::span<const Mat3> elastic, std::span<const char> held, const Vec2& gravity, double restitution,
-              VecX& d);
+  // nothing (and returns 0) when p.restitution < 0 (off). `iterates`: the
+  // contacts' open-close iteration of the accepted solve.
+  int resolve(std::span<Contact> contacts, const ContactLinearisation& lin, std::span<ContactIterate> iterates,
+              const ContactParameters& p, const ImpactInputs& in, VecX& d);
   const ImpactEnergy& energy() const { return energy_; }
   // After move_blocks: the impacted blocks' end-of-step state (velocity and
   // what Shi's scheme derives from it).
   void write_end_states(Blocks& blocks) const;
-  // After keep_shear_references: the landing contacts' shear springs
-  // unloaded at their corrected end positions.
-  void unload_shear_springs(std::span<Contact> contacts, const ContactLinearisation& lin, const OpenCloseState& s,
-                            ContactLaw law) const;
+  // After the law kept its shear references: the landing contacts' shear
+  // springs unloaded at their corrected end positions (a sliding one only
+  // where the law keeps a reference for it: Shi's slides on from where it is).
+  void unload_shear_springs(std::span<Contact> contacts, const ContactLinearisation& lin,
+                            std::span<const ContactIterate> iterates, bool sliding_keeps_reference) const;
 
  private:
   struct Landing {

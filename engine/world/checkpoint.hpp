@@ -9,9 +9,9 @@
 // shear references, the clock, the last step's figures) and what the Stepper
 // carries from one step to the next (the contact search's range and what the
 // list's staleness is measured from; the linear solver's preconditioner
-// choice and kept inverses). Each type lists its fields once, beside their
-// declarations (core/archive.hpp); the Stepper's list says what is left out
-// and why.
+// choice and kept inverses; the contact law's own per-contact history). Each
+// type lists its fields once, beside their declarations (core/archive.hpp);
+// the Stepper's list says what is left out and why.
 //
 // The file: a 32-byte header, then the payload.
 //   magic "DDA-CKPT" | u32 format | u32 byte-order mark 0x01020304 |
@@ -35,8 +35,9 @@ namespace dda {
 // contacts' lagged friction normal force (friction_lag). 4: the meshed
 // solver's kept factors. 5: the energy budget's impact term (the landing
 // law). 6: the age of the contacts' lagged friction. 7: whether a contact
-// was a bonded joint when first found.
-inline constexpr std::uint32_t kCheckpointFormat = 7;
+// was a bonded joint when first found. 8: the contact law's part, with its
+// per-contact history (the lagged friction's memory, out of the contacts).
+inline constexpr std::uint32_t kCheckpointFormat = 8;
 
 // The World's state and `extra` (bytes its owner keeps beside it: the Lua
 // layer's loads and monitors), as a checkpoint file's bytes.

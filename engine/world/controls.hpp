@@ -15,7 +15,7 @@
 #include <string>
 
 #include "block/time_scheme.hpp"
-#include "contact/contact_law.hpp"
+#include "contact/contact.hpp"
 #include "core/material.hpp"
 #include "core/types.hpp"
 #include "solver/solver_settings.hpp"
@@ -40,19 +40,20 @@ struct Controls {
   double rho_inf = 0.9;                     // generalized-α: spectral radius at high frequency
   double shear_ratio = 0.4;                 // shear spring = shear_ratio × g0 (Shi's 2/5)
   int open_close_limit = 6;                 // open-close iterations before Δt is cut and the step redone
-  // Open-close hysteresis under ContactLaw::Shi, as a fraction of half the
-  // model height, for every decision: a closed contact opens once separated
-  // by more than this, an open one closes once penetrated by more, an intact
-  // joint fails once its shear force exceeds its strength by the shear spring
-  // times this, and friction decides with the same band. Without it,
-  // contacts that carry next to no force (the Poisson-loaded vertical joints
-  // of a wall) flip state on round-off and the iteration never settles.
-  // ContactLaw::Holding does not use it: its bands are in the step's units
-  // (contact/contact_law.hpp, contact_slack).
+  // Open-close hysteresis of gap decisions and intact joints, as a fraction
+  // of half the model height: a closed contact opens once separated by more
+  // than this, an open one closes once penetrated by more; an intact joint
+  // fails once its shear force exceeds its strength by the shear spring
+  // times this. Without it, contacts that carry next to no force (the
+  // Poisson-loaded vertical joints of a wall) flip state on round-off and the
+  // iteration never settles. (Under ContactLaw::Shi, friction decisions take
+  // it too; under Holding those of contacts that are not intact joints have
+  // their own band, in the step's units: contact/holding_law.hpp,
+  // contact_slack.)
   double contact_tolerance = 1e-9;
-  // The contact law (contact/contact_law.hpp): Holding, in which friction
-  // holds (the default); Shi, the law of Shi (1988) as the engine had it
-  // before, opt-in (a block that must hold on a slope creeps at small Δt;
+  // The contact law (contact/contact_model.hpp, one file each): Holding,
+  // in which friction holds (the default); Shi, the law of Shi (1988) as the
+  // engine had it before, opt-in (a block that must hold on a slope creeps at small Δt;
   // the paper's scripts pin it to reproduce the paper's figures).
   ContactLaw contact_law = ContactLaw::Holding;
   // Kelvin–Voigt damping of the blocks' strains, σ = E(ε + β·ε̇): β in

@@ -64,39 +64,10 @@ BlockEnergy block_energy(const Blocks& blocks, const VecX& d, const TimeScheme& 
   return e;
 }
 
-// Elastic energy of the closed contacts' springs after the last check, and
-// the work of friction on the sliding ones over the step.
-struct ContactEnergy {
-  double held = 0, friction = 0;
-};
-
-ContactEnergy contact_energy(std::span<const Contact> contacts, const ContactLinearisation& lin, const VecX& d,
-                             const ContactParameters& p) {
-  ContactEnergy e;
-  for (std::size_t i = 0; i < contacts.size(); ++i) {
-    const Contact& c = contacts[i];
-    if (c.state == ContactState::Open) continue;
-    const ContactParameters::Springs k = p.springs(c);
-    const double kn = c.scale * k.kn, ks = c.scale * k.ks;
-    if (kn > 0) e.held += 0.5 * c.normal_force * c.normal_force / kn;
-    if (c.state == ContactState::Locked) {
-      if (ks > 0) e.held += 0.5 * c.shear_force * c.shear_force / ks;
-    } else {
-      // Sliding: friction (|Contact::shear_force| = N·tanφ) opposes the
-      // step's shear motion, whichever sign convention the contact law
-      // reports its shear force in: the work is −|S·ds|.
-      const ContactGradients& g = lin.gradients[i];
-      const double ds_step = g.es_v.dot(d.segment<6>(6 * c.vblock)) + g.es_e.dot(d.segment<6>(6 * c.eblock));
-      e.friction -= std::abs(c.shear_force * ds_step);
-    }
-  }
-  return e;
-}
-
 }  // namespace
 
 void account_step_energy(WorldState& w, const VecX& d, const TimeScheme& scheme, std::span<const Mat3> elastic,
-                         const ContactLinearisation& lin, const ContactParameters& contact_law, double fixed_spring,
+                         const ContactLinearisation& lin, const ContactModel& contact_law, double fixed_spring,
                          EnergyScratch& scratch) {
   // The contacts' serial sum runs beside the blocks' parallel terms (each
   // result its own, so the same bits): the step waits for the longer only.
@@ -106,7 +77,7 @@ void account_step_energy(WorldState& w, const VecX& d, const TimeScheme& scheme,
       [&] {
         blocks = block_energy(w.blocks, d, scheme, elastic, w.controls.gravity, w.controls.strain_damping, scratch);
       },
-      [&] { contacts = contact_energy(w.contacts, lin, d, contact_law); });
+      [&] { contacts = contact_law.energy(w.contacts, lin, d); });
   const Loads::Work loads = w.loads.step_work(w.blocks, d);
   const Boundaries::Work bounds = w.boundaries.step_work(w.time, w.step_end_time(), fixed_spring, w.blocks, d, scheme);
 

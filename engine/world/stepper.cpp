@@ -3,26 +3,29 @@
 //   step
 //   ├─ check_new_model       once per set of blocks: no overlaps, the g2 length
 //   ├─ begin_step            validate controls; derive automatic g0, g1;
-//   │                        threads; material constants; the time scheme
-//   │                        (and the state of new blocks); the linear
-//   │                        solver's backend, then the solve regime
+//   │                        threads; material constants; the contact law
+//   │                        (checks the controls it cannot work with); the
+//   │                        time scheme (and the state of new blocks); the
+//   │                        linear solver's backend, then the solve regime
 //   │                        (solve_regime.hpp) from that backend's last step
 //   ├─ DetectContacts        contact/contact_detection: search or reuse the list
+//   │                        (the contact law's history follows a search)
 //   ├─ attempt, until one is accepted:
 //   │  ├─ Assemble           assembly/block_terms, loading/, boundary/ at t + Δt
-//   │  ├─ PredictStates      warm start; first guess of the contact states
-//   │  ├─ open-close loop, until no contact changes state:
-//   │  │  ├─ Assemble        assembly/contact_terms: rows of the changed contacts
+//   │  ├─ PredictStates      warm start; the contact law's first guess
+//   │  ├─ open-close loop, until the contact law asks for no other solve:
+//   │  │  ├─ Assemble        the contact law's terms (springs, forces) into
+//   │  │  │                  assembly/contact_terms: rows of the changed contacts
 //   │  │  ├─ Solve           solver/: the LinearSolver (PCG or CHOLMOD; with
 //   │  │  │                  meshed blocks assembly/mesh_reduction, for the nodes)
-//   │  │  └─ CheckContacts   contact/open_close: open, sliding, locked
+//   │  │  └─ CheckContacts   the contact law: open, sliding, locked
 //   │  └─ ControlStep        block/motion: g2 bound, contact range, inverted
 //   │                        blocks, penetration → accept, or cut Δt (or widen
 //   │                        the contact range) and redo (step_control.hpp)
-//   └─ Update                the energy budget (world/energy.cpp); the landing
-//                            law's impacts (contact/landing.hpp, opt-in);
-//                            block/motion, loading/, boundary/, contacts; Δt
-//                            grows back after a clean step
+//   └─ Update                the energy budget (world/energy.cpp); the contact
+//                            law's impacts (the landing law, opt-in);
+//                            block/motion, loading/, boundary/; what the
+//                            contacts keep; Δt grows back after a clean step
 //
 // Each stage is timed into StepStats::profile (step_profile.hpp). Where the
 // next changes land:
@@ -33,9 +36,12 @@
 //     only, so a redone attempt finds it untouched;
 //   * the energy budget: world/energy.cpp, at the start of Update (each
 //     kind's work from its own folder: Loads/Boundaries::step_work);
-//   * contact transfer and friction: contact/ (detection carries states
-//     over by identity; open_close.cpp decides states with contact_law.cpp);
-//     what a redo restores is save/restore_contact_states;
+//   * contact transfer: contact/contact_detection (carries states over by
+//     identity);
+//   * a contact law: contact/ behind ContactModel (contact_model.hpp), one
+//     file each (shi_law, holding_law); the open-close iteration's
+//     questions, what a redo restores (save_step/restore_step) and what the
+//     contacts keep (commit) are the model's;
 //   * another solver backend: solver/ only (linear_solver.hpp says how).
 #include "world/stepper.hpp"
 
@@ -63,7 +69,7 @@ StepStats Stepper::step(WorldState& w) {
     detect_contacts(w);
     {
       StageTimer timer(stats_.profile, Stage::ControlStep);
-      save_contact_states(w.contacts, open_close_);
+      contact_model_->save_step(w.contacts);
     }
     for (;;) {
       const Rejection r = attempt(w);
@@ -139,10 +145,10 @@ void Stepper::begin_step(WorldState& w) {
   validate_controls(w.controls);
   for (int r = 0; r < static_cast<int>(w.rocks.size()); ++r) validate(w.rocks[r], r);
   for (int j = 0; j < static_cast<int>(w.joints.size()); ++j) validate(w.joints[j], j);
-  validate_landing_law(w.controls.restitution, w.controls.integrator, w.blocks);
   derive_automatic_controls(w);
   set_up_threads(w.controls);
   derive_material_constants(w);
+  set_up_contact_model(w);
   start_time_scheme(w);
   set_up_solver(w);
 }
@@ -172,11 +178,38 @@ void Stepper::derive_material_constants(const WorldState& w) {
   for (std::size_t r = 0; r < w.rocks.size(); ++r) elastic_[r] = elastic_matrix(w.rocks[r], c.plane);
   tan_friction_.resize(w.joints.size());
   for (std::size_t j = 0; j < w.joints.size(); ++j) tan_friction_[j] = std::tan(deg_to_rad(w.joints[j].friction_deg));
-  contact_law_ = {g0_, c.shear_ratio, c.contact_tolerance * w.half_height, w.joints, tan_friction_, c.contact_law};
-  contact_law_.friction_lag = c.friction_lag;
   scheme_.gg = c.gg;
   scheme_.choose(c.integrator, c.rho_inf);
   scheme_.mesh_mass = c.mesh_mass;
+}
+
+// A model made for another law takes over the contacts' history where it
+// means the same to it.
+ContactModel& Stepper::contact_model(const WorldState& w) {
+  if (!contact_model_ || contact_model_->law() != w.controls.contact_law) {
+    std::unique_ptr<ContactModel> next = make_contact_model(w.controls.contact_law);
+    next->take_over(contact_model_.get(), w.contacts.size());
+    contact_model_ = std::move(next);
+  }
+  return *contact_model_;
+}
+
+// The model of the control contact_law, its parameters for the step, and its
+// check of the controls (it refuses those it cannot work with).
+void Stepper::set_up_contact_model(const WorldState& w) {
+  const Controls& c = w.controls;
+  ContactParameters p;
+  p.g0 = g0_;
+  p.shear_ratio = c.shear_ratio;
+  p.tolerance = c.contact_tolerance * w.half_height;
+  p.joints = w.joints;
+  p.tan_friction = tan_friction_;
+  p.friction_lag = c.friction_lag;
+  p.restitution = c.restitution;
+  p.integrator = c.integrator;
+  ContactModel& model = contact_model(w);
+  model.check(p, w.blocks);
+  model.set_parameters(p);
 }
 
 // The second-order schemes' state of blocks that have none yet (new blocks):
@@ -220,8 +253,9 @@ void Stepper::detect_contacts(WorldState& w) {
   StageTimer timer(stats_.profile, Stage::DetectContacts);
   const Controls& c = w.controls;
   const double range = detection_.range(c.contact_range, 2.5 * c.g2 * w.half_height);
-  if (detection_.detect(w.blocks, range, w.contacts, linearisation_)) {
+  if (detection_.detect(w.blocks, range, w.contacts, linearisation_, previous_contact_)) {
     stats_.contacts_searched = true;
+    contact_model_->follow_search(previous_contact_);
     // The system's rows: which contacts couple which blocks.
     system_.set_contacts(static_cast<int>(w.blocks.count()), w.contacts);
   }
@@ -252,12 +286,12 @@ void Stepper::assemble_own_terms(WorldState& w) {
 // The warm start and the open-close iteration's first guess (solve_regime.hpp).
 void Stepper::predict(WorldState& w) {
   StageTimer timer(stats_.profile, Stage::PredictStates);
-  start_open_close(w.contacts, linearisation_, contact_law_, w.dt, open_close_);
+  contact_model_->start_attempt(w.contacts, linearisation_, w.dt);
   const Blocks& blocks = w.blocks;
   // The Δt of the step the warm start extrapolates from: the last accepted
-  // one's (after a cut or a growth of Δt it differs; Shi's law keeps the
-  // engine's earlier results bit for bit, with this step's).
-  const double dt_last = contact_law_.law == ContactLaw::Holding && w.last_stats.dt > 0 ? w.last_stats.dt : w.dt;
+  // one's (after a cut or a growth of Δt it differs), as the contact law says
+  // (Shi's keeps the engine's earlier results bit for bit, with this step's).
+  const double dt_last = contact_model_->warm_start_dt(w.last_stats.dt, w.dt);
   solution_.resize(6 * static_cast<Eigen::Index>(blocks.count()));
   parallel_for_each(
       blocks.count(),
@@ -268,10 +302,11 @@ void Stepper::predict(WorldState& w) {
                 : blocks.last_displacement[b];
       },
       256);
-  if (regime_.predict_states) predict_contact_states(w.contacts, linearisation_, solution_, contact_law_, open_close_);
+  if (regime_.predict_states) contact_model_->predict(w.contacts, linearisation_, solution_);
 }
 
-// loop { Assemble → Solve → CheckContacts } until no contact changes state.
+// loop { Assemble → Solve → CheckContacts } until the contact law asks for
+// no other solve.
 // Solves while states change stop at the regime's open-close tolerance; once
 // the states hold, a tightening pass (which does not count against the
 // open-close limit) solves to the accepted tolerance and checks again.
@@ -318,7 +353,8 @@ Rejection Stepper::open_close(WorldState& w) {
     solver_->tolerance = tightening ? regime_.accept_tolerance : regime_.open_close_tolerance;
     {
       StageTimer timer(stats_.profile, Stage::Assemble);
-      assemble_contact_rows(w.contacts, linearisation_, open_close_, contact_law_, own_,
+      contact_model_->contribute(w.contacts, linearisation_);
+      assemble_contact_rows(w.contacts, linearisation_, contact_model_->terms(), contact_model_->changed(), own_,
                             /*all_rows=*/it == 0 && !tightening, system_, rhs_, row_reassembled_);
     }
     SolveReport report;
@@ -336,14 +372,14 @@ Rejection Stepper::open_close(WorldState& w) {
     if (!report.finite || !solution_.allFinite()) throw Error(divergence_message(w));
     if (!report.converged) return Rejection::SolverNotConverged;
 
-    bool changed = false;
+    NextSolve next = NextSolve::None;
     {
       StageTimer timer(stats_.profile, Stage::CheckContacts);
-      changed = check_contact_states(w.contacts, linearisation_, solution_, contact_law_, open_close_);
+      next = contact_model_->check_solve(w.contacts, linearisation_, solution_);
     }
-    if (changed) {
+    if (next != NextSolve::None) {
       tightening = false;
-      if (open_close_.free_pass) --it;  // for friction that lagged grossly alone: free too
+      if (next == NextSolve::Uncounted) --it;  // (friction that lagged grossly alone, under the holding law)
     } else if (solver_->tolerance == regime_.accept_tolerance) {
       return Rejection::None;  // settled
     } else {
@@ -381,11 +417,11 @@ void Stepper::control_step(WorldState& w, Rejection r) {
     detection_.widen_automatic_range(motion_.largest_displacement);
     {
       StageTimer timer(stats_.profile, Stage::ControlStep);
-      restore_contact_states(w.contacts, open_close_);
+      contact_model_->restore_step(w.contacts);
     }
     detect_contacts(w);
     StageTimer timer(stats_.profile, Stage::ControlStep);
-    save_contact_states(w.contacts, open_close_);
+    contact_model_->save_step(w.contacts);
     return;
   }
   StageTimer timer(stats_.profile, Stage::ControlStep);
@@ -395,11 +431,11 @@ void Stepper::control_step(WorldState& w, Rejection r) {
     throw Error(msg("step ", w.steps + 1, " at t = ", w.time, " s: ", stats_.cut_reason, " even after ",
                     stats_.step_cuts, " cuts of the time step (down to ", w.dt, " s). ",
                     r == Rejection::PenetrationTooDeep
-                        ? describe_deepest_contact(w.blocks, w.contacts, linearisation_, contact_law_,
+                        ? describe_deepest_contact(w.blocks, w.contacts, linearisation_, contact_model_->parameters(),
                                                    c.g2 * w.half_height, w.half_height)
                         : "Check loads, g0 and g2."));
   ++stats_.step_cuts;
-  restore_contact_states(w.contacts, open_close_);
+  contact_model_->restore_step(w.contacts);
   w.dt *= c.cut_factor;
 }
 
@@ -410,39 +446,36 @@ void Stepper::control_step(WorldState& w, Rejection r) {
 // (unless settling).
 void Stepper::update(WorldState& w) {
   StageTimer timer(stats_.profile, Stage::Update);
-  account_step_energy(w, solution_, scheme_, elastic_, linearisation_, contact_law_,
+  account_step_energy(w, solution_, scheme_, elastic_, linearisation_, *contact_model_,
                       w.controls.fixed_point_factor * g0_, energy_scratch_);
-  land(w);
+  resolve_impacts(w);
   const Blocks& blocks = w.blocks;
   w.loads.move_points(blocks, solution_);
   w.boundaries.update(blocks, solution_, scheme_);
   move_material_points(w.tracked, blocks, solution_);
   move_blocks(w.blocks, solution_, vertex_motion_, elastic_, scheme_);
-  landing_.write_end_states(w.blocks);
   detection_.add_rotations(solution_);
-  keep_shear_references(w.contacts, linearisation_, open_close_, contact_law_);
-  landing_.unload_shear_springs(w.contacts, linearisation_, open_close_, contact_law_.law);
-  keep_lagged_friction(w.contacts, open_close_, contact_law_);
+  contact_model_->commit(w.blocks, w.contacts, linearisation_);
   w.time = w.step_end_time();
   ++w.steps;
 }
 
-// The landing law (control restitution, off at -1): the contacts that land
-// in the accepted step end it as a rigid-body impact would end them; the
-// step's displacement and its blocks' motion change with it, and the energy
-// budget books what the impacts took.
-void Stepper::land(WorldState& w) {
+// The contact law's impacts (the landing law, control restitution, off at
+// -1): the contacts that land in the accepted step end it as a rigid-body
+// impact would end them; the step's displacement and its blocks' motion
+// change with it, and the energy budget books what the impacts took.
+void Stepper::resolve_impacts(WorldState& w) {
   const Controls& c = w.controls;
-  if (c.restitution >= 0) solved_ = solution_;
-  stats_.landings =
-      landing_.resolve(w.blocks, w.contacts, linearisation_, open_close_, contact_law_, scheme_, own_, elastic_,
-                       c.restitution < 0 ? std::vector<char>() : w.boundaries.held_blocks(w.blocks.count()), c.gravity,
-                       c.restitution, solution_);
+  const bool impacts = contact_model_->resolves_impacts();
+  if (impacts) solved_ = solution_;
+  const std::vector<char> held = impacts ? w.boundaries.held_blocks(w.blocks.count()) : std::vector<char>();
+  stats_.landings = contact_model_->resolve_impacts(w.contacts, linearisation_,
+                                                    {w.blocks, scheme_, own_.k, elastic_, held, c.gravity}, solution_);
   if (stats_.landings == 0) return;
   const double spring = c.fixed_point_factor * g0_, t_end = w.step_end_time();
   const Boundaries::Work solved = w.boundaries.step_work(w.time, t_end, spring, w.blocks, solved_, scheme_);
   const Boundaries::Work landed = w.boundaries.step_work(w.time, t_end, spring, w.blocks, solution_, scheme_);
-  account_impact_energy(w.energy, landing_.energy(), solved, landed);
+  account_impact_energy(w.energy, contact_model_->impact_energy(), solved, landed);
   check_block_motion(w.blocks, solution_, block_inverted_, vertex_motion_);
 }
 

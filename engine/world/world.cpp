@@ -297,6 +297,7 @@ double World::half_height() const { return s_.half_height > 0 ? s_.half_height :
 
 const BlockSparseMatrix& World::last_matrix() const { return stepper_->system().stored(); }
 const VecX& World::last_rhs() const { return stepper_->rhs(); }
+const ContactModel* World::contact_model() const { return stepper_->current_contact_model(); }
 
 std::uint64_t World::state_hash() const {
   std::uint64_t h = 1469598103934665603ULL;

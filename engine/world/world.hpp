@@ -18,6 +18,7 @@
 namespace dda {
 
 class Stepper;
+class ContactModel;
 
 class World {
  public:
@@ -167,6 +168,9 @@ class World {
   // and debugging.
   const BlockSparseMatrix& last_matrix() const;
   const VecX& last_rhs() const;
+  // The contact law of the last step, with its per-contact history
+  // (contact/contact_model.hpp; nullptr before the first step), for tests.
+  const ContactModel* contact_model() const;
 
   // Hash of the full state (positions, velocities, stresses, contacts), for
   // determinism checks.

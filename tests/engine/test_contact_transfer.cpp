@@ -13,7 +13,7 @@
 #include <string>
 
 #include "../scenes.hpp"
-#include "contact/contact_law.hpp"
+#include "contact/contact_kinematics.hpp"
 #include "contact/narrow_phase.hpp"
 #include "core/error.hpp"
 #include "geometry/polygon.hpp"

@@ -6,7 +6,7 @@
 
 #include "../scenes.hpp"
 #include "contact/broad_phase.hpp"
-#include "contact/contact_law.hpp"
+#include "contact/contact_kinematics.hpp"
 #include "contact/narrow_phase.hpp"
 
 using namespace dda;

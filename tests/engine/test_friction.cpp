@@ -12,7 +12,7 @@
 #include <vector>
 
 #include "../scenes.hpp"
-#include "contact/contact_law.hpp"
+#include "contact/friction_lag.hpp"
 
 using namespace dda;
 
@@ -740,8 +740,11 @@ TEST(Friction, LaggedFrictionARedoneStepIsTheShorterStep) {
     for (int n = 0; n < 30; ++n) s->w.step();
   }
   double trailing = 0;
-  for (const Contact& c : a.w.contacts())
-    if (c.state != ContactState::Open) trailing = std::max(trailing, std::abs(c.friction_normal - c.normal_force));
+  for (std::size_t i = 0; i < a.w.contacts().size(); ++i) {
+    const Contact& c = a.w.contacts()[i];
+    if (c.state != ContactState::Open)
+      trailing = std::max(trailing, std::abs(test::friction_memory(a.w, i).normal - c.normal_force));
+  }
   ASSERT_GT(trailing, 100) << "the lagged force does not trail N: the test would not see it restored";
   const double step = (a.w.block_velocity(a.block).head<2>().norm()) * 1e-4;
   for (Incline* s : {&a, &b}) s->w.controls().g2 = 0.5 * step / s->w.half_height();
@@ -754,8 +757,8 @@ TEST(Friction, LaggedFrictionARedoneStepIsTheShorterStep) {
   EXPECT_NEAR(a.slip(), b.slip(), 1e-12);
   ASSERT_EQ(a.w.contacts().size(), b.w.contacts().size());
   for (std::size_t i = 0; i < a.w.contacts().size(); ++i)
-    EXPECT_NEAR(a.w.contacts()[i].friction_normal, b.w.contacts()[i].friction_normal,
-                1e-9 * std::abs(b.w.contacts()[i].friction_normal))
+    EXPECT_NEAR(test::friction_memory(a.w, i).normal, test::friction_memory(b.w, i).normal,
+                1e-9 * std::abs(test::friction_memory(b.w, i).normal))
         << "contact " << i;
 }
 
@@ -778,14 +781,16 @@ TEST(Friction, LaggedFrictionIsCarriedOverWhenTheContactsAreSearchedAgain) {
   for (int n = 0; n < 10; ++n) a.w.step(), b.w.step();
   EXPECT_NEAR(a.slip(), b.slip(), 1e-12);
   int compared = 0;
-  for (const Contact& ca : a.w.contacts())
-    for (const Contact& cb : b.w.contacts())
-      if (same_identity(ca, cb) && cb.friction_age > 0) {
+  for (std::size_t i = 0; i < a.w.contacts().size(); ++i)
+    for (std::size_t j = 0; j < b.w.contacts().size(); ++j) {
+      const FrictionMemory &ma = test::friction_memory(a.w, i), &mb = test::friction_memory(b.w, j);
+      if (same_identity(a.w.contacts()[i], b.w.contacts()[j]) && mb.age > 0) {
         ++compared;
-        EXPECT_GT(std::abs(cb.friction_normal - cb.normal_force), 50) << "N_f no longer trails N";
-        EXPECT_NEAR(ca.friction_normal, cb.friction_normal, 1e-9 * std::abs(cb.friction_normal));
-        EXPECT_EQ(ca.friction_age, cb.friction_age);
+        EXPECT_GT(std::abs(mb.normal - b.w.contacts()[j].normal_force), 50) << "N_f no longer trails N";
+        EXPECT_NEAR(ma.normal, mb.normal, 1e-9 * std::abs(mb.normal));
+        EXPECT_EQ(ma.age, mb.age);
       }
+    }
   EXPECT_EQ(compared, 2);
 }
 
@@ -795,7 +800,7 @@ TEST(Friction, LaggedFrictionIsCarriedOverWhenTheContactsAreSearchedAgain) {
 // stops at v0²/(2 g tanφ). Bounds: the mean deceleration over the first
 // 0.05 s within 1 % of g·tanφ, the distance to the stop within 1 % of the
 // closed form (measured: within 0.33 % and 1.1e-5). Before friction iterated
-// while it lagged grossly (open_close.cpp, kGrossLag), the first steps'
+// while it lagged grossly (holding_law.cpp, kGrossLag), the first steps'
 // friction used an N many times the accepted one and the block decelerated
 // at 13 m/s² for 0.05 s: 1 m/s stopped after 0.051 m of 0.140 m.
 TEST(Friction, BlockSetSlidingOnAFlatFaceDeceleratesAtTheClosedFormRate) {
@@ -838,12 +843,12 @@ TEST(Friction, LaggedStrengthOfANewContactIsTheMeanOfWhatItCarried) {
   const std::vector<std::pair<double, double>> steps{
       // (Δt, N)
       {1e-4, 500}, {1e-4, 2000}, {3e-5, 800}, {1e-3, 1500}, {2e-3, 100}, {1e-5, 4000}, {5e-3, 1200}};
-  ContactIterate it;
+  LaggedFriction lag;
   double age = 0;
   std::vector<double> ends;
   for (const auto& [dt, n] : steps) {
-    it.lag_weight = age > 0 ? lag_weight(dt, age, t_r) : 1.0;  // a contact that closes takes its first N
-    it.lag_start = friction_normal(it, n);                     // N_f at the step's end
+    lag.weight = age > 0 ? lag_weight(dt, age, t_r) : 1.0;  // a contact that closes takes its first N
+    lag.start = friction_normal(lag, n);                    // N_f at the step's end
     age += dt;
     ends.push_back(age);
     double weighted = 0, before = 0;
@@ -852,7 +857,7 @@ TEST(Friction, LaggedStrengthOfANewContactIsTheMeanOfWhatItCarried) {
       before = ends[k];
     }
     const double mean = weighted / -std::expm1(-age / t_r);
-    EXPECT_NEAR(it.lag_start, mean, 1e-12 * mean) << "age " << age;
+    EXPECT_NEAR(lag.start, mean, 1e-12 * mean) << "age " << age;
   }
   EXPECT_EQ(lag_weight(1e-3, 0.5, 1e-6), 1.0);  // Δt ≫ t_r: no lag, to the last bit
 }

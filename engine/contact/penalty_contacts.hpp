@@ -1,0 +1,150 @@
+#pragma once
+// What the two penalty laws ("shi", shi_law.hpp; "holding", holding_law.hpp)
+// share: contacts as springs (normal on a closed contact, shear on a locked
+// one) decided by an open-close iteration (open / sliding / locked,
+// Mohr-Coulomb on the springs' forces, Shi 1988), the friction lag
+// (friction_lag.hpp) and the landing law (landing.hpp). Each law says, in its
+// own file, what is its own: the bands of its decisions, how a sliding
+// contact locks again, whether it locks unloaded, whether friction iterates
+// to the accepted solve's normal force, where the shear springs' reference
+// points go at the step's end.
+#include <memory>
+#include <span>
+#include <vector>
+
+#include "contact/contact_model.hpp"
+#include "contact/friction_lag.hpp"
+
+namespace dda {
+
+class LandingLaw;
+
+// Per-contact values that change during the open-close iteration of a step.
+struct ContactIterate {
+  // Shear offset of the spring at the step start: the shear force the
+  // contact carried into the step over ks (the holding law puts the
+  // reference point there at the end of the step before), 0 for a contact
+  // open at the step start. Kept through the step, so that the shear force
+  // is continuous through every change of state (under Shi's law: 0 once it
+  // closes or locks again).
+  double s0 = 0;
+  double normal_force = 0;  // from the previous iteration: drives sliding friction
+  double shear = 0;         // shear ds at the last check (m)
+  // Closed at the start of the step. A contact that was open approaches in
+  // the step: under the holding law it decides friction with the gap band,
+  // not the friction band of a share of the step's translations, which for a
+  // block landing fast is many times the force that stops it (holding_law.cpp).
+  bool closed_at_start = false;
+  // Friction that lags the normal force (friction_lag.hpp): N_f0 and w of
+  // the step.
+  LaggedFriction lag{};
+  // The normal force the last solve's friction used (the landing law,
+  // landing.hpp, takes that solve's forces out of the step).
+  double solved_normal = 0;
+};
+
+// A contact under a displacement d of the blocks (a solve's, or a warm
+// start's): its gap and shear, and the hysteresis of the decision.
+struct ContactMotion {
+  double dn = 0;           // penetration after the step (positive: the vertex is inside)
+  double ds = 0;           // shear from the reference point after the step
+  double ds_step = 0;      // shear motion in the step (the sliding direction)
+  double gap_slack = 0;    // the hysteresis of gap decisions and intact joints (m)
+  double shear_slack = 0;  // the hysteresis of friction decisions (m)
+};
+
+// Whether a sliding contact's friction agrees with the normal force of the
+// solve it slid through (the holding law iterates until it does:
+// holding_law.hpp).
+enum class FrictionConsistency { Agrees, Moved, MovedGrossly };
+
+class PenaltyContacts : public ContactModel {
+ public:
+  PenaltyContacts();
+  ~PenaltyContacts() override;
+
+  void take_over(const ContactModel* previous, std::size_t contacts) override;
+  void follow_search(std::span<const int> previous) override;
+  void check(const ContactParameters& p, const Blocks& blocks) const override;
+  void save_step(std::span<const Contact> contacts) override;
+  void restore_step(std::span<Contact> contacts) override;
+  void start_attempt(std::span<const Contact> contacts, const ContactLinearisation& lin, double dt) override;
+  void predict(std::span<Contact> contacts, const ContactLinearisation& lin, const VecX& d) override;
+  void contribute(std::span<const Contact> contacts, const ContactLinearisation& lin) override;
+  NextSolve check_solve(std::span<Contact> contacts, const ContactLinearisation& lin, const VecX& d) override;
+  ContactEnergy energy(std::span<const Contact> contacts, const ContactLinearisation& lin,
+                       const VecX& d) const override;
+  bool resolves_impacts() const override { return p_.restitution >= 0; }
+  int resolve_impacts(std::span<Contact> contacts, const ContactLinearisation& lin, const ImpactInputs& in,
+                      VecX& d) override;
+  const ImpactEnergy& impact_energy() const override;
+  void commit(Blocks& blocks, std::span<Contact> contacts, const ContactLinearisation& lin) override;
+  void save(ArchiveWriter& ar) const override;
+  void load(ArchiveReader& ar) override;
+
+  // The friction lag's memory of each contact (for tests).
+  std::span<const FrictionMemory> friction_memory() const { return memory_; }
+
+ protected:
+  // ---- What each law says (its own file)
+  // Before the decisions on a displacement d (a solve's, or the warm
+  // start's): what the bands need of it.
+  virtual void measure_step(const VecX& /*d*/) {}
+  // The bands of the decisions of a contact (m.gap_slack, m.shear_slack).
+  virtual void set_bands(ContactMotion& m, const ContactOffsets& o, bool closed_at_start) const = 0;
+  // An intact joint that is decided as an unbonded contact from the start.
+  virtual bool unbonded(const JointMaterial& /*joint*/) const { return false; }
+  // Whether a contact that closes or locks again does so unloaded (its
+  // shear offset dropped to 0 at its position at the step's start).
+  virtual bool locks_unloaded() const = 0;
+  // Whether a sliding contact locks again.
+  virtual bool locks_again(const Contact& c, const ContactIterate& it, double normal, double tan_phi,
+                           const ContactSprings& k, const ContactMotion& m) const = 0;
+  // Whether the friction of a contact that slid through the solve with the
+  // normal force `solved_with` and slides on agrees with the solve's own
+  // normal force (Agrees: the law does not iterate friction); and, when one
+  // did not, whether another solve is wanted for friction alone (`gross`:
+  // one moved grossly; `states_changed`: another solve comes anyway).
+  virtual FrictionConsistency friction_consistency(double /*normal*/, double /*solved_with*/,
+                                                   const ContactSprings& /*k*/, const ContactMotion& /*m*/,
+                                                   const ContactOffsets& /*o*/) const {
+    return FrictionConsistency::Agrees;
+  }
+  virtual NextSolve solve_again_for_friction(bool /*gross*/, bool /*states_changed*/) { return NextSolve::None; }
+  // The sign of a sliding contact's reported shear force (Contact::shear_force)
+  // against its sliding direction.
+  virtual double reported_friction_sign(const Contact& c) const { return c.slide_sign; }
+  // The accepted step's shear reference points (Contact::ref_param), and
+  // whether a sliding contact keeps one.
+  virtual void keep_shear_references(std::span<Contact> contacts, const ContactLinearisation& lin) = 0;
+  virtual bool sliding_keeps_reference() const = 0;
+
+  // Per contact, parallel to the contact list.
+  std::vector<ContactIterate> iterate_;
+
+ private:
+  // The decision both laws share: the contact's next state from its motion
+  // under the latest displacements (Mohr-Coulomb on the springs' forces,
+  // with the law's bands and re-locking). Returns true when the state (or
+  // the intact flag, or the sliding direction) changed.
+  bool decide(Contact& c, ContactIterate& it, const JointMaterial& joint, double tan_phi, const ContactSprings& k,
+              const ContactMotion& m) const;
+  // A contact's motion under d, from the shear offset s0 in force.
+  ContactMotion motion(const ContactGradients& k, const ContactOffsets& o, const VecX& d, const Contact& c,
+                       const ContactIterate& it) const;
+
+  // The per-contact history: the friction lag's memory (friction_lag.hpp).
+  std::vector<FrictionMemory> memory_;
+  std::vector<FrictionMemory> scratch_memory_;  // follow_search's
+  // At the start of the step, for a redo.
+  std::vector<ContactIterationState> saved_;
+  std::vector<FrictionMemory> saved_memory_;
+  double dt_ = 0;  // the attempt's step (s)
+  // Whether a contact may hold a lagged friction force (the last commit left
+  // one, or the contacts came from elsewhere: a checkpoint, another law).
+  // Without friction_lag and with none held, a commit has nothing to drop.
+  bool lagged_friction_held_ = true;
+  std::unique_ptr<LandingLaw> landing_;
+};
+
+}  // namespace dda

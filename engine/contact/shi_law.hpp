@@ -1,0 +1,38 @@
+#pragma once
+// contact_law = "shi": Shi's (1988) contact law as the paper has it, and as
+// the engine had it before the holding law, bit for bit (the paper's
+// figures, docs/validation.md, bench/state_hashes_shi.txt). Penalty springs
+// decided by the open-close iteration (penalty_contacts.hpp), with:
+//   * one band for every decision, contact_tolerance × half the model's
+//     height (a length of the model);
+//   * a contact that closes or locks again does so unloaded, at its position
+//     at the step's start; a sliding contact locks again once its motion
+//     reverses;
+//   * friction uses the normal force of the solve before;
+//   * the shear reference point of a locked contact is where it locked;
+//     a sliding contact keeps none;
+//   * the warm start extrapolates with this step's Δt, and the reported shear
+//     force of a sliding contact has the sign the engine gave it before.
+// A block that must stay on a slope creeps down it at small Δt
+// (docs/contacts.md).
+#include "contact/penalty_contacts.hpp"
+
+namespace dda {
+
+class ShiLaw final : public PenaltyContacts {
+ public:
+  ContactLaw law() const override { return ContactLaw::Shi; }
+  std::span<const IgnoredControl> ignored_controls() const override { return {}; }
+  double warm_start_dt(double /*last_dt*/, double dt) const override { return dt; }
+
+ private:
+  void set_bands(ContactMotion& m, const ContactOffsets& o, bool closed_at_start) const override;
+  bool locks_unloaded() const override { return true; }
+  bool locks_again(const Contact& c, const ContactIterate& it, double normal, double tan_phi, const ContactSprings& k,
+                   const ContactMotion& m) const override;
+  double reported_friction_sign(const Contact& c) const override { return -c.slide_sign; }
+  void keep_shear_references(std::span<Contact> contacts, const ContactLinearisation& lin) override;
+  bool sliding_keeps_reference() const override { return false; }
+};
+
+}  // namespace dda

@@ -1,0 +1,109 @@
+// The contact laws behind one interface (contact/contact_model.hpp): each
+// control a law declares it does not read changes nothing under it, and the
+// scene the test runs is one in which that control does change the answer
+// under a law that reads it (so the test could fail). Reference: the state
+// hash of the run with the control at its default; tolerance: none (the same
+// bits).
+#include <gtest/gtest.h>
+
+#include <string>
+
+#include "../scenes.hpp"
+#include "contact/contact_model.hpp"
+#include "world/controls.hpp"
+
+using namespace dda;
+
+namespace {
+
+// Every law, in the order of the control contact_law's choices.
+std::vector<ContactLaw> every_law() {
+  std::vector<ContactLaw> laws;
+  for (std::size_t i = 0; i < find_control("contact_law")->choices.size(); ++i)
+    laws.push_back(static_cast<ContactLaw>(i));
+  return laws;
+}
+
+const char* name(ContactLaw law) { return find_control("contact_law")->choices[static_cast<int>(law)]; }
+
+// A settling wall(3) with velocity carried over (gg = 1: contacts open and
+// close, slide and lock) and a block landing on an incline beside it, under
+// `law` with the number control `control` at `value` (nullptr: every control
+// at its default): its state hash after 40 steps.
+std::uint64_t run_hash(ContactLaw law, const char* control, double value) {
+  World w = test::brick_wall(3);
+  Controls& c = w.controls();
+  c.gg = 1;
+  c.threads = 1;
+  c.contact_law = law;
+  if (control) find_control(control)->number(c) = value;
+  const int rock = w.add_rock_material(test::granite());
+  test::add_fixed_base(w, test::rotated(test::rectangle(10, -1, 6, 1), 0.3), rock);
+  w.add_block(test::rotated(test::rectangle(12, 0.01, 1, 0.5), 0.3), rock);
+  for (int k = 0; k < 40; ++k) w.step();
+  return w.state_hash();
+}
+
+TEST(ContactModel, EachLawIsItsOwnModel) {
+  for (const ContactLaw law : every_law()) EXPECT_EQ(make_contact_model(law)->law(), law) << name(law);
+}
+
+TEST(ContactModel, AControlALawDoesNotReadChangesNothingUnderIt) {
+  int declared = 0;
+  for (const ContactLaw law : every_law()) {
+    for (const IgnoredControl& ignored : make_contact_model(law)->ignored_controls()) {
+      ++declared;
+      const ControlSpec* spec = find_control(ignored.control);
+      ASSERT_TRUE(spec && spec->type == ControlType::Number) << ignored.control << " is not a number control";
+      EXPECT_TRUE(std::string(ignored.why).size() > 10) << ignored.control << ": say why";
+      Controls defaults;
+      const double changed = spec->number(defaults) > 0 ? 1000 * spec->number(defaults) : 1e-3;
+      EXPECT_EQ(run_hash(law, ignored.control, changed), run_hash(law, nullptr, 0))
+          << ignored.control << " = " << changed << " under \"" << name(law) << "\"";
+      // Under a law that reads it, the same change moves the answer.
+      for (const ContactLaw other : every_law()) {
+        bool reads = true;
+        for (const IgnoredControl& o : make_contact_model(other)->ignored_controls())
+          reads = reads && std::string(o.control) != ignored.control;
+        if (reads) {
+          EXPECT_NE(run_hash(other, ignored.control, changed), run_hash(other, nullptr, 0))
+              << ignored.control << " = " << changed << " under \"" << name(other) << "\"";
+        }
+      }
+    }
+  }
+  EXPECT_GT(declared, 0);  // (the holding law's contact_tolerance)
+}
+
+// A law's per-contact history follows the contacts into the model of
+// another law where it means the same: the friction lag's memory (both
+// penalty laws keep it) of a block sliding on 40° / φ = 25° (gravity on at
+// once, friction_lag = 3 ms, 30 steps of 1e-4 s under "holding"), then one
+// step under "shi": each contact closed through it is one step older.
+// Reference: its age before plus the step's Δt, exactly; a memory dropped
+// at the switch would be a new interface, its age the step's Δt alone.
+TEST(ContactModel, TheHistoryFollowsTheContactsIntoAnotherLaw) {
+  World w;
+  test::block_on_incline(w, deg_to_rad(40), 25);
+  Controls& c = w.controls();
+  c.contact_law = ContactLaw::Holding;
+  c.friction_lag = 3e-3;
+  c.g1 = 1e-4;
+  for (int k = 0; k < 30; ++k) w.step();
+  std::vector<double> age;
+  for (std::size_t i = 0; i < w.contacts().size(); ++i) age.push_back(test::friction_memory(w, i).age);
+  c.contact_law = ContactLaw::Shi;
+  const StepStats step = w.step();
+  ASSERT_EQ(w.contact_model()->law(), ContactLaw::Shi);
+  ASSERT_FALSE(step.contacts_searched);
+  ASSERT_EQ(step.step_cuts, 0);
+  int closed = 0;
+  for (std::size_t i = 0; i < w.contacts().size(); ++i) {
+    if (w.contacts()[i].state == ContactState::Open || !(age[i] > 0)) continue;
+    ++closed;
+    EXPECT_EQ(test::friction_memory(w, i).age, age[i] + step.dt) << "contact " << i;
+  }
+  EXPECT_GE(closed, 1);
+}
+
+}  // namespace
