@@ -20,7 +20,8 @@
 --          out/rock_bar_frames/sigma_xx_00000.png, ...: a frame of sigma_xx every
 --          15 steps (30 us: 101 frames), colours fixed to +-5 MPa (when built with the
 --          renderer); out/rock_bar.mp4, a 30 frames/s movie of them (3.4 s) when
---          ffmpeg is on the PATH (--set movie= for none).
+--          ffmpeg is on the PATH (--set movie= for none). out/result.csv: the
+--          peak compression (Pa) and its time (s), a row of dda sweep's table.
 
 local dda = require "dda"
 local bars = require "paper.bars"
@@ -69,4 +70,5 @@ if centre:count() > 0 then
   local sxx, t_peak = centre:min("sxx")   -- compression is negative
   print(string.format("peak compression at the centre: %.4g MPa at t = %.4g ms", -sxx / 1e6, t_peak * 1e3))
   print("history written to " .. centre:file())
+  return { peak_compression = -sxx, t_peak = t_peak }   -- DIR/result.csv; dda sweep's columns
 end
