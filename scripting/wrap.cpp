@@ -442,6 +442,7 @@ void push_stats(lua_State* L, const StepStats& s) {
   lua_pushstring(L, s.solver);
   lua_setfield(L, -2, "solver");
   integer("factorisations", s.factorisations);
+  integer("factor_iterations", s.factor_iterations);
   lua_pushstring(L, s.solve_regime);
   lua_setfield(L, -2, "solve_regime");
   integer("step_cuts", s.step_cuts);

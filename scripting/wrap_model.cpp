@@ -617,8 +617,11 @@ std::vector<Name> stats_names() {
       {"open_close_iterations", "open-close iterations (one solve each)"},
       {"cg_iterations", "conjugate-gradient iterations, over all rows"},
       {"patch_iterations", "CG iterations confined to the patch of a re-solve"},
-      {"solver", "the backend that solved: `\"pcg\"` or `\"cholmod\"`"},
+      {"solver",
+       "the backend the step started with: `\"pcg\"` or `\"cholmod\"` (a trial of the factor that gives up "
+       "finishes its step with PCG)"},
       {"factorisations", "numeric factorisations of the system (cholmod)"},
+      {"factor_iterations", "of `cg_iterations`, those preconditioned with the factor (cholmod)"},
       {"solve_regime", "`\"short\"` or `\"long\"` solves"},
       {"step_cuts", "times Δt was cut and the step redone"},
       {"cut_reason", "why the last cut was made (empty: none)"},

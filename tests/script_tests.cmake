@@ -45,11 +45,11 @@ dda_run_test(script.blast_geometry scripts 600 paper/blast_geometry.lua)
 
 # The benchmark table's machinery on tiny scenes (a smoke test: the scripts
 # run and the table has its rows and columns; no timing is checked). Two
-# runs per row, the median kept: 3 scenes × 2 thread counts = 6 rows of 20
+# runs per row, the median kept: 3 scenes × 2 thread counts = 6 rows of 21
 # columns; blast:4:2:3 is timed after 3 untimed steps, its row blast(4)@3.
 # Chosen scenes print the table on stdout.
 add_test(NAME script.bench_table
-         COMMAND bash -c "mkdir -p \"$(dirname \"$2\")\" && DDA=$1 REPEAT=2 SCENES='wall:3:2 blast:4:2 blast:4:2:3' scripts/bench/run.sh > \"$2\" && test $(grep -c '^wall(3),' \"$2\") = 2 && test $(grep -c '^blast(4),' \"$2\") = 2 && test $(grep -c '^blast(4)@3,' \"$2\") = 2 && test $(awk -F, '!/^#/ && NF != 20' \"$2\" | wc -l) = 0" _
+         COMMAND bash -c "mkdir -p \"$(dirname \"$2\")\" && DDA=$1 REPEAT=2 SCENES='wall:3:2 blast:4:2 blast:4:2:3' scripts/bench/run.sh > \"$2\" && test $(grep -c '^wall(3),' \"$2\") = 2 && test $(grep -c '^blast(4),' \"$2\") = 2 && test $(grep -c '^blast(4)@3,' \"$2\") = 2 && test $(awk -F, '!/^#/ && NF != 21' \"$2\" | wc -l) = 0" _
                  $<TARGET_FILE:dda> ${DDA_SCRIPT_TEST_OUT}/bench_table.csv
          WORKING_DIRECTORY ${PROJECT_SOURCE_DIR})
 set_tests_properties(script.bench_table PROPERTIES LABELS scripts TIMEOUT 120)

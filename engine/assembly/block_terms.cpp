@@ -18,12 +18,18 @@ void add_stress_and_body_force(const Blocks& blocks, std::size_t b, const Vec2& 
   f[1] += blocks.mass[b] * gravity.y();
 }
 
+// k's strain terms (εx, εy, γxy) += s·m, on the upper triangle.
+void add_to_strain_terms(double s, const Mat3& m, Symmetric6& k) {
+  for (int i = 0; i < 3; ++i)
+    for (int j = i; j < 3; ++j) k.at(3 + i, 3 + j) += s * m(i, j);
+}
+
 // Kelvin–Voigt damping of the strain terms, σ = E(ε + β·ε̇), c = β·A·E: its
 // force −c·ε̇₁ at the end-of-step strain rate ε̇₁ = velocity_factor·d −
 // carried_velocity (the time scheme's), as a VBC dashpot's.
-void add_strain_damping(const Blocks& blocks, std::size_t b, const Mat3& c, const TimeScheme& scheme, Mat6& k,
+void add_strain_damping(const Blocks& blocks, std::size_t b, const Mat3& c, const TimeScheme& scheme, Symmetric6& k,
                         Vec6& f) {
-  k.bottomRightCorner<3, 3>() += scheme.velocity_factor() * c;
+  add_to_strain_terms(scheme.velocity_factor(), c, k);
   f.tail<3>() += c * scheme.carried_velocity(blocks.scheme_state(b)).tail<3>();
 }
 
@@ -35,17 +41,17 @@ void assemble_block_terms(const Blocks& blocks, std::span<const Mat3> elastic, c
   terms.k.resize(n);
   terms.f.resize(n);
   parallel_for_each(n, [&](std::size_t b) {
-    Mat6 k = Mat6::Zero();
+    Symmetric6 k;
     Vec6 f = Vec6::Zero();
     const double area = blocks.area[b];
     // Elasticity acts on the strain terms (εx, εy, γxy).
-    k.bottomRightCorner<3, 3>() += area * elastic[blocks.material[b]];
+    add_to_strain_terms(area, elastic[blocks.material[b]], k);
     if (strain_damping > 0)
       add_strain_damping(blocks, b, strain_damping * area * elastic[blocks.material[b]], scheme, k, f);
     // Inertia: the time scheme's terms with ∫TᵀT dA.
     scheme.add_inertia(blocks.mass[b] / area, block_tt(blocks, b, scheme.mesh_mass), blocks.scheme_state(b), k, f);
     add_stress_and_body_force(blocks, b, gravity, f);
-    terms.k[b] = Symmetric6(k);
+    terms.k[b] = k;
     terms.f[b] = f;
   });
 }
@@ -55,7 +61,7 @@ void start_time_scheme_state(Blocks& blocks, const Vec2& gravity, const BlockTer
     if (!std::isnan(blocks.acceleration[b][0])) continue;
     Vec6 f = loads.f[b];
     add_stress_and_body_force(blocks, b, gravity, f);
-    const Mat6 mass = (blocks.mass[b] / blocks.area[b]) * block_tt(blocks, b, mesh_mass);
+    const Mat6 mass = block_tt(blocks, b, mesh_mass).scaled(blocks.mass[b] / blocks.area[b]).full();
     blocks.out_of_balance[b] = f;
     blocks.acceleration[b] = mass.ldlt().solve(f);
   }

@@ -5,7 +5,7 @@
 
 namespace dda {
 
-Mat6 block_tt(const Blocks& blocks, std::size_t b, MeshMass mesh_mass) {
+IntegratedTt block_tt(const Blocks& blocks, std::size_t b, MeshMass mesh_mass) {
   if (mesh_mass == MeshMass::Consistent || !blocks.is_element(static_cast<BlockId>(b)))
     return integrated_tt(blocks.area[b], blocks.sxx[b], blocks.syy[b], blocks.sxy[b]);
   // An element is a triangle: its corner-lumped ∫TᵀT has the second moments

@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "block/displacement.hpp"
 #include "block/time_scheme.hpp"
 #include "core/types.hpp"
 #include "geometry/block_polygons.hpp"
@@ -81,7 +82,7 @@ struct MaterialPoint {
 // ∫TᵀT dA of block b (its mass over the density, the time scheme's M/ρ):
 // exact for a first-order block, for an element of a meshed block as
 // `mesh_mass` says (MeshMass, block/time_scheme.hpp).
-Mat6 block_tt(const Blocks& blocks, std::size_t b, MeshMass mesh_mass);
+IntegratedTt block_tt(const Blocks& blocks, std::size_t b, MeshMass mesh_mass);
 
 // Throws dda::Error, naming `what`, unless every edge exists (and there is one).
 void check_edges(const Blocks& blocks, const std::vector<EdgeRef>& edges, const std::string& what);

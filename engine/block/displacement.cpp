@@ -12,19 +12,33 @@ namespace dda {
 // S, ∫X², ∫Y², ∫XY, since ∫X = ∫Y = 0. Written out entry by entry (it runs
 // for every block every step); each entry is summed in the order of rows of T
 // (first row, then second), from +0, as a loop over T's entries would.
-Mat6 integrated_tt(double area, double sxx, double syy, double sxy) {
+IntegratedTt integrated_tt(double area, double sxx, double syy, double sxy) {
+  IntegratedTt m;
+  m.area = 0.0 + area;
+  m.t22 = (0.0 + syy) + sxx;
+  m.t23 = 0.0 + -sxy;
+  m.t24 = 0.0 + sxy;
+  m.t25 = (0.0 + -0.5 * syy) + 0.5 * sxx;
+  m.t33 = 0.0 + sxx;
+  m.t35 = 0.0 + 0.5 * sxy;
+  m.t44 = 0.0 + syy;
+  m.t45 = 0.0 + 0.5 * sxy;
+  m.t55 = (0.0 + 0.25 * syy) + 0.25 * sxx;
+  return m;
+}
+
+Mat6 IntegratedTt::full() const {
   Mat6 m = Mat6::Zero();
-  m(0, 0) = 0.0 + area;
-  m(1, 1) = 0.0 + area;
-  m(2, 2) = (0.0 + syy) + sxx;
-  m(2, 3) = m(3, 2) = 0.0 + -sxy;
-  m(2, 4) = m(4, 2) = 0.0 + sxy;
-  m(2, 5) = m(5, 2) = (0.0 + -0.5 * syy) + 0.5 * sxx;
-  m(3, 3) = 0.0 + sxx;
-  m(3, 5) = m(5, 3) = 0.0 + 0.5 * sxy;
-  m(4, 4) = 0.0 + syy;
-  m(4, 5) = m(5, 4) = 0.0 + 0.5 * sxy;
-  m(5, 5) = (0.0 + 0.25 * syy) + 0.25 * sxx;
+  m(0, 0) = m(1, 1) = area;
+  m(2, 2) = t22;
+  m(2, 3) = m(3, 2) = t23;
+  m(2, 4) = m(4, 2) = t24;
+  m(2, 5) = m(5, 2) = t25;
+  m(3, 3) = t33;
+  m(3, 5) = m(5, 3) = t35;
+  m(4, 4) = t44;
+  m(4, 5) = m(5, 4) = t45;
+  m(5, 5) = t55;
   return m;
 }
 

@@ -7,6 +7,7 @@
 //       | 0  1   (x-x0)    0     (y-y0)  (x-x0)/2 |
 #include <cmath>
 
+#include "core/symmetric6.hpp"
 #include "core/types.hpp"
 
 namespace dda {
@@ -29,9 +30,48 @@ inline Vec6 displacement_transpose_times(const Vec2& p, const Vec2& centroid, co
   return f;
 }
 
-// ∫ TᵀT dA over the block, from its area and second moments about the
-// centroid (first moments vanish there). Used by the inertia sub-matrix.
-Mat6 integrated_tt(double area, double sxx, double syy, double sxy);
+// ∫ TᵀT dA over the block (the inertia sub-matrix over ρ), from its area and
+// second moments about the centroid (first moments vanish there). Of its 36
+// entries ten are distinct and the rest zero; it is made and applied for
+// every block several times a step, so it is kept as those ten, and its
+// products give the bits of the full matrix's Eigen products (each row summed
+// in column order; the zero entries add nothing). Eigen evaluates
+// c·(M·x) as (c·M)·x: write tt.scaled(c) * x for it.
+struct IntegratedTt {
+  double area = 0;                                                                         // (0, 0) and (1, 1)
+  double t22 = 0, t23 = 0, t24 = 0, t25 = 0, t33 = 0, t35 = 0, t44 = 0, t45 = 0, t55 = 0;  // (3, 4) is 0
+
+  // c·∫TᵀT, entry by entry.
+  IntegratedTt scaled(double c) const {
+    return {c * area, c * t22, c * t23, c * t24, c * t25, c * t33, c * t35, c * t44, c * t45, c * t55};
+  }
+  Vec6 operator*(const Vec6& x) const {
+    Vec6 y;
+    y[0] = area * x[0];
+    y[1] = area * x[1];
+    y[2] = ((t22 * x[2] + t23 * x[3]) + t24 * x[4]) + t25 * x[5];
+    y[3] = (t23 * x[2] + t33 * x[3]) + t35 * x[5];
+    y[4] = (t24 * x[2] + t44 * x[4]) + t45 * x[5];
+    y[5] = ((t25 * x[2] + t35 * x[3]) + t45 * x[4]) + t55 * x[5];
+    return y;
+  }
+  // k += c·∫TᵀT, on the upper triangle.
+  void add_scaled_to(double c, Symmetric6& k) const {
+    k.at(0, 0) += c * area;
+    k.at(1, 1) += c * area;
+    k.at(2, 2) += c * t22;
+    k.at(2, 3) += c * t23;
+    k.at(2, 4) += c * t24;
+    k.at(2, 5) += c * t25;
+    k.at(3, 3) += c * t33;
+    k.at(3, 5) += c * t35;
+    k.at(4, 4) += c * t44;
+    k.at(4, 5) += c * t45;
+    k.at(5, 5) += c * t55;
+  }
+  Mat6 full() const;
+};
+IntegratedTt integrated_tt(double area, double sxx, double syy, double sxy);
 
 }  // namespace dda
 

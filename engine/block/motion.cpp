@@ -48,7 +48,7 @@ void move_blocks(Blocks& blocks, const VecX& d_all, std::span<const Vec2> vertex
         const Vec6 d = d_all.segment<6>(6 * b);
         // The scheme's state with the mass of the step's system (the block
         // as it was).
-        const Mat6 mass = (blocks.mass[b] / blocks.area[b]) * block_tt(blocks, b, scheme.mesh_mass);
+        const IntegratedTt mass = block_tt(blocks, b, scheme.mesh_mass).scaled(blocks.mass[b] / blocks.area[b]);
         const BlockEndState next = scheme.end_state(d, blocks.scheme_state(b), mass);
         const int first = blocks.vertex_start[b], end = blocks.vertex_start[b + 1];
         for (int v = first; v < end; ++v) blocks.vertices[v] += vertex_motion[v];

@@ -40,6 +40,8 @@
 // time t, not per step, so a change of Δt (a cut, regrowth) leaves them
 // consistent. Shi's scheme writes them too (the step's mean acceleration),
 // so a model may switch schemes between steps.
+#include "block/displacement.hpp"
+#include "core/symmetric6.hpp"
 #include "core/types.hpp"
 
 namespace dda {
@@ -110,16 +112,16 @@ struct TimeScheme {
   double mass_factor() const { return is_shi() ? 2 / (dt * dt) : (1 - alpha_m) / ((1 - alpha_f) * beta * dt * dt); }
 
   // Inertia of a block of density rho, ∫TᵀT = tt.
-  void add_inertia(double rho, const Mat6& tt, const BlockState& s, Mat6& k, Vec6& f) const {
+  void add_inertia(double rho, const IntegratedTt& tt, const BlockState& s, Symmetric6& k, Vec6& f) const {
     if (is_shi()) {
-      k += (2 * rho / (dt * dt)) * tt;
-      f += (2 * rho / dt) * (tt * (gg * s.velocity));
+      tt.add_scaled_to(2 * rho / (dt * dt), k);
+      f += tt.scaled(2 * rho / dt) * (gg * s.velocity);
       return;
     }
-    k += (rho * mass_factor()) * tt;
+    tt.add_scaled_to(rho * mass_factor(), k);
     const Vec6 carried =
         ((1 - alpha_m) / (beta * dt)) * s.velocity + ((1 - alpha_m) * (0.5 - beta) / beta - alpha_m) * s.acceleration;
-    f += (gg * rho / (1 - alpha_f)) * (tt * carried) + (gg * alpha_f / (1 - alpha_f)) * s.out_of_balance;
+    f += tt.scaled(gg * rho / (1 - alpha_f)) * carried + (gg * alpha_f / (1 - alpha_f)) * s.out_of_balance;
   }
 
   // v₁ = velocity_factor()·d − carried_velocity(s): what a dashpot acts on.
@@ -135,7 +137,7 @@ struct TimeScheme {
 
   // The state at the end of the step under displacement d; mass = ρ∫TᵀT as
   // in the step's system.
-  BlockEndState end_state(const Vec6& d, const BlockState& s, const Mat6& mass) const {
+  BlockEndState end_state(const Vec6& d, const BlockState& s, const IntegratedTt& mass) const {
     BlockEndState e;
     e.velocity = end_velocity(d, s);
     if (is_shi()) {
@@ -147,7 +149,8 @@ struct TimeScheme {
     const Vec6 v0 = gg * s.velocity, a0 = gg * s.acceleration;
     e.acceleration = (d - dt * v0 - (dt * dt * (0.5 - beta)) * a0) / (beta * dt * dt);
     e.out_of_balance =
-        (mass * ((1 - alpha_m) * e.acceleration + alpha_m * a0) - (gg * alpha_f) * s.out_of_balance) / (1 - alpha_f);
+        (mass * Vec6((1 - alpha_m) * e.acceleration + alpha_m * a0) - (gg * alpha_f) * s.out_of_balance) /
+        (1 - alpha_f);
     return e;
   }
 
@@ -158,7 +161,7 @@ struct TimeScheme {
   // second-order schemes' acceleration follows from d, and an impact that
   // changes v1 but not d would break a₁ = (d − Δt·v₀ − …)/(βΔt²): the
   // landing law refuses them.
-  BlockEndState end_state_after_impact(const Vec6& v1, const BlockState& s, const Mat6& mass) const {
+  BlockEndState end_state_after_impact(const Vec6& v1, const BlockState& s, const IntegratedTt& mass) const {
     BlockEndState e;
     e.velocity = v1;
     e.acceleration = (v1 - gg * s.velocity) / dt;

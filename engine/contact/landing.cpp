@@ -40,7 +40,7 @@ namespace {
 // A block's rigid inverse mass (u, v, r), zero for a held block.
 Mat3 rigid_inverse_mass(const Blocks& blocks, BlockId b, bool held, MeshMass mesh_mass) {
   if (held) return Mat3::Zero();
-  const Mat6 mass = (blocks.mass[b] / blocks.area[b]) * block_tt(blocks, b, mesh_mass);
+  const Mat6 mass = block_tt(blocks, b, mesh_mass).scaled(blocks.mass[b] / blocks.area[b]).full();
   return mass.topLeftCorner<3, 3>().inverse();
 }
 }  // namespace
@@ -51,7 +51,7 @@ int LandingLaw::slot_of(BlockId b, const Blocks& blocks, const VecX& d, const Ti
   Slot s;
   s.block = b;
   s.held = held[b] != 0;
-  s.mass = (blocks.mass[b] / blocks.area[b]) * block_tt(blocks, b, scheme.mesh_mass);
+  s.mass = block_tt(blocks, b, scheme.mesh_mass).scaled(blocks.mass[b] / blocks.area[b]);
   s.rigid_inverse = rigid_inverse_mass(blocks, b, s.held, scheme.mesh_mass);
   s.dd = Vec3::Zero();
   s.force = Vec6::Zero();

@@ -111,7 +111,7 @@ class LandingLaw {
   struct Slot {
     BlockId block;
     bool held;
-    Mat6 mass;
+    IntegratedTt mass;
     Mat3 rigid_inverse;  // zero for a held block
     Vec6 force;          // the landing contacts' forces in the solve (generalised, on its unknowns)
     Vec6 d_pre, v_pre;   // the step's displacement and end velocity without the landing contacts

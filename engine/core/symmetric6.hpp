@@ -32,6 +32,10 @@ class Symmetric6 {
       for (int j = i; j < 6; ++j) u_[n++] += e[j] * ke[i];
   }
 
+  // Entry (i, j) (either order).
+  double& at(int i, int j) { return u_[kIndex[i][j]]; }
+  double at(int i, int j) const { return u_[kIndex[i][j]]; }
+
   // The upper triangle, row by row.
   const std::array<double, 21>& upper() const { return u_; }
   template <class Archive>

@@ -61,7 +61,9 @@ SolveReport CholmodSolver::solve_from(const VecX& b, VecX& x, std::span<const ch
   // factorise this one and go on from where the CG got.
   cg_.max_iterations = factorised ? max_iterations : std::min(max_iterations, refactor_iterations);
   SolveReport report = changed_rows.empty() ? cg_.solve(b, x) : cg_.resolve(b, x, changed_rows);
-  if (!report.converged && report.finite && !factorised) {
+  declined_ =
+      !report.converged && report.finite && !factorised && may_refactorise && !may_refactorise(report.iterations);
+  if (!report.converged && report.finite && !factorised && !declined_) {
     const int before = report.iterations;
     if (factorise()) {
       cg_.max_iterations = max_iterations;
@@ -70,6 +72,7 @@ SolveReport CholmodSolver::solve_from(const VecX& b, VecX& x, std::span<const ch
     report.iterations += before;
   }
   report.factorisations = factorised;
+  report.factor_iterations = report.iterations;
   return report;
 }
 

@@ -18,6 +18,7 @@
 // the same for any thread count (the PCG's sums are fixed-order), and the
 // factor's bits do not depend on the threads: results are identical for any
 // thread count.
+#include <functional>
 #include <memory>
 
 #include "solver/cholmod_factor.hpp"
@@ -56,6 +57,13 @@ class CholmodSolver final : public LinearSolver {
   // CG iterations a solve may take with the factor it has before the system
   // is factorised anew (CholmodSettings::refactor_iterations).
   int refactor_iterations = 6;
+  // Asked, with the solve's iterations so far, before a kept factor that no
+  // longer serves is replaced by a factorisation of the current system (the
+  // automatic choice, solver_choice.hpp, declines one that would cost more
+  // than a step with PCG). Declined: the solve returns unconverged and
+  // declined_factorisation() says why. Empty: always.
+  std::function<bool(int iterations)> may_refactorise;
+  bool declined_factorisation() const { return declined_; }
 
  private:
   SolveReport solve_from(const VecX& b, VecX& x, std::span<const char> changed_rows);
@@ -64,6 +72,7 @@ class CholmodSolver final : public LinearSolver {
   CholmodFactor factor_;
   PcgSolver cg_;
   const LinearOperator* a_ = nullptr;
+  bool declined_ = false;
 };
 
 }  // namespace dda

@@ -40,7 +40,8 @@ struct SolveReport {
   // (PcgSettings::patch_hops), and how many rows that patch had.
   int patch_iterations = 0;
   int patch_rows = 0;
-  int factorisations = 0;  // numeric factorisations of the system (a direct backend)
+  int factorisations = 0;     // numeric factorisations of the system (a direct backend)
+  int factor_iterations = 0;  // of `iterations`, those preconditioned with a sparse factor (CholmodSolver)
 };
 
 // What the step knows of its solves, told to the solver once per step before

@@ -37,7 +37,9 @@ namespace dda {
 // law). 6: the age of the contacts' lagged friction. 7: whether a contact
 // was a bonded joint when first found. 8: the contact law's part, with its
 // per-contact history (the lagged friction's memory, out of the contacts).
-inline constexpr std::uint32_t kCheckpointFormat = 8;
+// 9: the automatic solver choice's trial (its work against PCG's, and a
+// trial given up in the step).
+inline constexpr std::uint32_t kCheckpointFormat = 9;
 
 // The World's state and `extra` (bytes its owner keeps beside it: the Lua
 // layer's loads and monitors), as a checkpoint file's bytes.

@@ -34,7 +34,7 @@ BlockEnergy block_energy(const Blocks& blocks, const VecX& d, const TimeScheme& 
   parallel_for_each(blocks.count(), [&](std::size_t b) {
     const Vec6 db = d.segment<6>(6 * b);
     const BlockState s = blocks.scheme_state(static_cast<BlockId>(b));
-    const Mat6 mass = (blocks.mass[b] / blocks.area[b]) * block_tt(blocks, b, scheme.mesh_mass);
+    const IntegratedTt mass = block_tt(blocks, b, scheme.mesh_mass).scaled(blocks.mass[b] / blocks.area[b]);
     const Vec6 v1 = scheme.end_velocity(db, s);
     const Mat3& c = compliance[blocks.material[b]];
     const Vec3 before = blocks.stress[b], after = before + elastic[blocks.material[b]] * db.tail<3>();

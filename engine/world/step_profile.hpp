@@ -50,6 +50,7 @@ struct StepStats {
   int patch_iterations = 0;       // confined to the patch of a re-solve (PcgSettings::patch_hops)
   const char* solver = "";        // the backend that solved ("pcg", "cholmod": SolverSettings::kind)
   int factorisations = 0;         // numeric factorisations of the system (cholmod)
+  int factor_iterations = 0;      // of cg_iterations, those preconditioned with the factor (cholmod)
   const char* solve_regime = "";  // "short" or "long" solves (world/solve_regime.hpp)
   int step_cuts = 0;
   std::string cut_reason;  // why the last cut was made ("" when none), with the block when one is to blame

@@ -369,6 +369,7 @@ Rejection Stepper::open_close(WorldState& w) {
     stats_.cg_iterations += report.iterations;
     stats_.patch_iterations += report.patch_iterations;
     stats_.factorisations += report.factorisations;
+    stats_.factor_iterations += report.factor_iterations;
     if (!report.finite || !solution_.allFinite()) throw Error(divergence_message(w));
     if (!report.converged) return Rejection::SolverNotConverged;
 

@@ -24,7 +24,9 @@
 --          oc_per_step,cg_per_step,cuts,detect_share,assemble_share,solve_share,
 --          update_share,other_share,peak_rss_mb,patch_per_step (CG iterations
 --          confined to a re-solve's patch, PcgSettings::patch_hops; cg_per_step
---          counts those over all rows).
+--          counts those over all rows),cpu_ms_per_step (the process's CPU time
+--          over the timed steps, all threads: on a shared machine it moves far
+--          less than the elapsed ms_per_step).
 
 local dda = require "dda"
 package.path = package.path .. ";" .. (debug.getinfo(1, "S").source:match("@?(.*/)") or "./") .. "?.lua"
@@ -79,6 +81,7 @@ m:controls{ predict_states = predict }
 if integrator ~= "" then m:controls{ integrator = integrator } end
 if patch >= 0 then m:controls{ patch_hops = patch } end
 m:step(warmup)
+local cpu_start = os.clock()
 local sum = { t_detect = 0, t_assemble = 0, t_solve = 0, t_check = 0, t_update = 0, t_total = 0,
               open_close_iterations = 0, cg_iterations = 0, patch_iterations = 0, step_cuts = 0,
               factorisations = 0 }
@@ -87,6 +90,7 @@ for _ = 1, steps do
   local s = m:stats()
   for k in pairs(sum) do sum[k] = sum[k] + s[k] end
 end
+local cpu_ms = 1e3 * (os.clock() - cpu_start) / steps
 local contacts = m:stats().contacts
 local blocks = #m:blocks{}
 
@@ -105,12 +109,13 @@ local total = sum.t_total
 local ms = 1e3 * total / steps
 local function share(x) return total > 0 and x / total or 0 end
 local other = total - sum.t_detect - sum.t_assemble - sum.t_solve - sum.t_check - sum.t_update
-local row = string.format("%s,%d,%d,%d,%d,%.3f,%.0f,%.2f,%.1f,%d,%.3f,%.3f,%.3f,%.3f,%.3f,%.1f,%.1f",
+local row = string.format("%s,%d,%d,%d,%d,%.3f,%.0f,%.2f,%.1f,%d,%.3f,%.3f,%.3f,%.3f,%.3f,%.1f,%.1f,%.3f",
   name, threads, blocks, contacts, steps, ms, blocks * steps / total, sum.open_close_iterations / steps,
   sum.cg_iterations / steps, sum.step_cuts, share(sum.t_detect), share(sum.t_assemble),
-  share(sum.t_solve + sum.t_check), share(sum.t_update), share(other), peak_rss_mb(), sum.patch_iterations / steps)
-print(string.format("%-10s threads %d  blocks %6d  contacts %7d  %9.2f ms/step  %9.0f block-steps/s  oc %.2f  cg %.1f (+%.1f on patches)  cuts %d  %s (%.2f factorisations/step)",
-  name, threads, blocks, contacts, ms, blocks * steps / total, sum.open_close_iterations / steps,
+  share(sum.t_solve + sum.t_check), share(sum.t_update), share(other), peak_rss_mb(), sum.patch_iterations / steps,
+  cpu_ms)
+print(string.format("%-10s threads %d  blocks %6d  contacts %7d  %9.2f ms/step (CPU %.2f)  %9.0f block-steps/s  oc %.2f  cg %.1f (+%.1f on patches)  cuts %d  %s (%.2f factorisations/step)",
+  name, threads, blocks, contacts, ms, cpu_ms, blocks * steps / total, sum.open_close_iterations / steps,
   sum.cg_iterations / steps, sum.patch_iterations / steps, sum.step_cuts, m:stats().solver,
   sum.factorisations / steps))
 if csv ~= "" then

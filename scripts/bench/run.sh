@@ -57,7 +57,7 @@ fi
 table=$(mktemp)
 {
   echo "# machine: $machine ($(nproc) cores, $cpu, $(free -g | awk '/Mem:/{print $2}') GiB); commit $(git rev-parse --short HEAD 2>/dev/null || echo '?'); runs per row $repeat (median kept)"
-  echo "scene,threads,blocks,contacts,steps,ms_per_step,block_steps_per_s,oc_per_step,cg_per_step,cuts,detect_share,assemble_share,solve_share,update_share,other_share,peak_rss_mb,patch_per_step,runs,ms_min,ms_max"
+  echo "scene,threads,blocks,contacts,steps,ms_per_step,block_steps_per_s,oc_per_step,cg_per_step,cuts,detect_share,assemble_share,solve_share,update_share,other_share,peak_rss_mb,patch_per_step,cpu_ms_per_step,runs,ms_min,ms_max"
 } > "$table"
 runs=$(mktemp -d)
 trap 'rm -rf "$runs" "$table"' EXIT

@@ -1,8 +1,12 @@
-// Sub-matrices: symmetry, the inertia integral against a direct quadrature,
-// and zero elastic energy under rigid-body motion.
+// Sub-matrices: symmetry, the inertia integral against a direct quadrature
+// and its compact products against the full matrix's, and zero elastic
+// energy under rigid-body motion.
 #include <gtest/gtest.h>
 
 #include <Eigen/Eigenvalues>
+#include <cstring>
+#include <limits>
+#include <random>
 
 #include "../scenes.hpp"
 #include "block/displacement.hpp"
@@ -16,7 +20,7 @@ TEST(SubMatrices, IntegratedTTMatchesQuadrature) {
   // (midpoint rule on a fine grid, exact up to discretisation).
   const std::vector<Vec2> tri = {{0, 0}, {2, 0}, {0.5, 1.5}};
   const auto pm = polygon_moments(tri);
-  const Mat6 closed = integrated_tt(pm.area, pm.sxx, pm.syy, pm.sxy);
+  const Mat6 closed = integrated_tt(pm.area, pm.sxx, pm.syy, pm.sxy).full();
   Mat6 quad = Mat6::Zero();
   const int n = 600;
   const double h = 2.0 / n;
@@ -30,6 +34,49 @@ TEST(SubMatrices, IntegratedTTMatchesQuadrature) {
   EXPECT_TRUE(closed.isApprox(closed.transpose(), 0));
   for (int r = 0; r < 6; ++r)
     for (int c = 0; c < 6; ++c) EXPECT_NEAR(closed(r, c), quad(r, c), 5e-3 * closed.diagonal().maxCoeff());
+}
+
+// The inertia terms are made with the ten distinct entries of ∫TᵀT; they
+// must give what the full 6×6 matrix's Eigen expressions gave (the engine's
+// results before, bit for bit): c·(M·x), which Eigen evaluates as (c·M)·x,
+// and K += c·M. Zeros may differ in sign only (the full product adds the
+// zero entries' ±0 terms), which no later sum can see.
+TEST(SubMatrices, IntegratedTtProductsHaveTheBitsOfTheFullMatrix) {
+  std::mt19937_64 rng(2024);
+  std::uniform_real_distribution<double> uniform(-1, 1);
+  std::uniform_int_distribution<int> pick(0, 9);
+  int differing = 0;
+  auto compare = [&](double full, double compact, double bound) {
+#ifdef DDA_NATIVE_ARCH
+    // Eigen's FMA and wider packets round otherwise: within 7·ε·Σ|terms|.
+    differing += !(std::abs(full - compact) <= bound);
+#else
+    (void)bound;
+    differing += full == 0 ? compact != 0 : std::memcmp(&full, &compact, sizeof(double)) != 0;
+#endif
+  };
+  const double eps7 = 7 * std::numeric_limits<double>::epsilon();
+  for (int trial = 0; trial < 100000; ++trial) {
+    const double area = std::pow(10.0, 3 * uniform(rng));
+    const double sxx = area * area * (0.01 + std::abs(uniform(rng))),
+                 syy = area * area * (0.01 + std::abs(uniform(rng)));
+    const double sxy = pick(rng) < 2 ? 0.0 : 0.1 * uniform(rng) * std::sqrt(sxx * syy);
+    const IntegratedTt tt = integrated_tt(area, sxx, syy, sxy);
+    const Mat6 full = tt.full();
+    Vec6 x;
+    for (int i = 0; i < 6; ++i) x[i] = pick(rng) == 0 ? 0.0 : uniform(rng) * std::pow(10.0, pick(rng) - 5);
+    const double c = std::pow(10.0, 8 * uniform(rng));
+    const Vec6 eigen = c * (full * x), compact = tt.scaled(c) * x;
+    const Vec6 bound = eps7 * ((c * full).cwiseAbs() * x.cwiseAbs());
+    for (int i = 0; i < 6; ++i) compare(eigen[i], compact[i], bound[i]);
+    Mat6 k = Mat6::Identity() * uniform(rng);
+    Symmetric6 ks(k);
+    k += c * full;
+    tt.add_scaled_to(c, ks);
+    for (int i = 0; i < 6; ++i)
+      for (int j = i; j < 6; ++j) compare(k(i, j), ks.at(i, j), 0.0);
+  }
+  EXPECT_EQ(differing, 0);
 }
 
 TEST(SubMatrices, ElasticMatricesAreSymmetricPositiveDefinite) {
