@@ -9,6 +9,7 @@
 namespace dda {
 
 enum class ContactState : std::uint8_t { Open, Sliding, Locked };
+constexpr ContactState enum_last(ContactState) { return ContactState::Locked; }  // (core/archive.hpp)
 
 const char* to_string(ContactState s);
 

@@ -23,6 +23,8 @@ class Loads {
   int add_pressure_load(const Blocks& blocks, const std::vector<EdgeRef>& edges, double pressure);
   void set_pressure(int id, double pressure);
   void set_pressure_history(int id, History pressure);
+  std::size_t point_load_count() const { return point_loads_.size(); }
+  std::size_t pressure_count() const { return pressure_loads_.size(); }
 
   // The step: forces at t_end into the right-hand side, serially in a fixed
   // order (few next to the blocks).
@@ -43,6 +45,8 @@ class Loads {
   void fields(Archive& ar) {
     ar(point_loads_, point_load_histories_, pressure_loads_);
   }
+  // Read from a checkpoint: every block, edge and load in range (core/load_check.hpp).
+  void check_loaded(const LoadCheck& check, const Blocks& blocks) const;
 
  private:
   struct PointLoad {
