@@ -53,6 +53,14 @@ int run_sweep(int argc, char** argv);
 bool add_results(lua_State* L, int idx, const char* what, std::string& why);
 // Writes <out>/result.csv (a header of the names, one row of values); false and `why` if it cannot.
 bool write_results(const Session& s, std::string& why);
+// What result.csv holds (dda run prints it on stderr when it cannot be written).
+std::string results_csv(const Session& s);
+
+// Before a run: the output folder can be made and written (a file created
+// in it and removed), and its file system has space; "" when so, else why
+// not. Less than kLowSpaceBytes free gives `warning` (the run goes on).
+std::string check_output_folder(const std::filesystem::path& folder, std::string& warning);
+inline constexpr double kLowSpaceBytes = 100e6;
 
 // help([x]): prints the API's documentation (help.cpp).
 int dda_help(lua_State* L);
