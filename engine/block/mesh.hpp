@@ -74,6 +74,16 @@ inline constexpr double kConcaveMeshShapeBound = 0.125;
 // exhaust memory before the first step's memory check.
 inline constexpr double kMaxMeshElements = 4e6;
 
+// The elements mesh_polygon makes of `outline` at `size`: the structured
+// mesher's count exactly, about area / (0.43·size²) for the concave mesher
+// (triangles of edge `size`; its refinement adds some near short edges).
+double estimated_mesh_elements(std::span<const Vec2> outline, double size);
+// The memory an element takes by the model's first step (the mesh, the
+// element's block arrays, its share of the step and of the meshed solver),
+// measured (docs/robustness.md): a block is refused, with the estimate,
+// before a mesh that cannot fit is made.
+inline constexpr double kMeshBytesPerElement = 5000;
+
 // Sets mesh.outline_edge from the geometry: a triangle edge lies on the
 // outline edge that holds both its ends (within `tol`).
 void label_outline_edges(TriangleMesh& mesh, std::span<const Vec2> outline, double tol);
