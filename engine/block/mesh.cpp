@@ -99,7 +99,7 @@ TriangleMesh mesh_polygon(std::span<const Vec2> outline, double size, const std:
 double estimated_mesh_elements(std::span<const Vec2> v, double size) {
   const int n = static_cast<int>(v.size());
   if (!(size > 0) || n < 3) return 0;
-  if (first_reflex_vertex(v) >= 0) return std::abs(polygon_moments(v).area) / (0.433 * size * size);
+  if (first_reflex_vertex(v) >= 0) return std::abs(polygon_moments(v).area) / (0.2 * size * size);
   double longest = 0;
   for (int k = 0; k < n; ++k) longest = std::max(longest, (v[(k + 1) % n] - v[k]).norm());
   // As mesh_convex_polygon divides (in floating point: the count may not fit an int).

@@ -134,7 +134,7 @@ void expect_error(const std::function<void()>& f, std::initializer_list<const ch
 }
 
 TEST(Memory, ATinyMeshSizeIsRefusedBeforeMeshingNamingIt) {
-  // mesh_size 0.01 m on a 10 m square: 4 million elements, about 20 GB; was
+  // mesh_size 0.01 m on a 10 m square: 4 million elements, about 16 GB; was
   // a bare "not enough memory" after the mesher had run for a minute.
   const OwnLimit limit(2e9);
   World w;

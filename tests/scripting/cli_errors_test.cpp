@@ -145,6 +145,8 @@ TEST(CliErrors, BadCommandLine) {
   EXPECT_EQ(run_dda("run x.lua --bogus", dir.path).exit_code, 2);
   EXPECT_EQ(run_dda("run x.lua --set novalue", dir.path).exit_code, 2);
   EXPECT_EQ(run_dda("run x.lua --threads -1", dir.path).exit_code, 2);
+  EXPECT_EQ(run_dda("run x.lua --threads 5000", dir.path).exit_code, 2);
+  EXPECT_EQ(run_dda("run x.lua --vtu 99999999999999999999", dir.path).exit_code, 2);
   EXPECT_EQ(run_dda("run", dir.path).exit_code, 2);
   EXPECT_EQ(run_dda("frobnicate", dir.path).exit_code, 2);
   EXPECT_EQ(run_dda("--help", dir.path).exit_code, 0);
@@ -265,6 +267,15 @@ TEST(CliFrames, FramesEveryNStepsFromTheCommandLine) {
   EXPECT_EQ(run_dda("run x.lua --frames 10 --frame-field sigma_zz", dir.path).exit_code, 2);
   EXPECT_EQ(run_dda("run x.lua --frames 0", dir.path).exit_code, 2);
   EXPECT_EQ(run_dda("run x.lua --frame-size 100", dir.path).exit_code, 2);
+  // Values the renderer refuses are the command line's errors, not the
+  // script line's that makes the model (was: "x.lua:1: dda.model: frame size ...").
+  write_file(dir / "x.lua", "dda.model{}\n");
+  for (const char* bad : {"--frame-size 9000x9000", "--frame-range -inf,inf"}) {
+    const auto e = run_dda(std::string("run x.lua --frames 10 ") + bad, dir.path);
+    EXPECT_EQ(e.exit_code, 2) << bad << "\n" << e.err;
+    EXPECT_NE(e.err.find("dda: --frame-size, --frame-range, --frame-view: "), std::string::npos) << e.err;
+    EXPECT_EQ(e.err.find("x.lua:"), std::string::npos) << e.err;
+  }
 }
 #endif
 

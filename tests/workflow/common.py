@@ -1,7 +1,9 @@
 """Shared by the workflow tests: the dda binary (argv[1]), scratch folders,
 running dda, and plain checks that print what failed."""
 import os
+import resource
 import shutil
+import signal
 import subprocess
 import sys
 import tempfile
@@ -34,6 +36,15 @@ def run(args, cwd, env=None, stdin=None, timeout=300):
     e.update(env or {})
     return subprocess.run([DDA] + args, cwd=cwd, env=e, input=stdin, capture_output=True, text=True,
                           timeout=timeout)
+
+
+def file_size_limit(limit):
+    """For subprocess's preexec_fn: files of at most `limit` bytes, SIGXFSZ ignored, so that
+    write(2) writes what fits and then fails with EFBIG, as a disk filling up."""
+    def pre():
+        signal.signal(signal.SIGXFSZ, signal.SIG_IGN)
+        resource.setrlimit(resource.RLIMIT_FSIZE, (limit, limit))
+    return pre
 
 
 def check(ok, what, detail=""):

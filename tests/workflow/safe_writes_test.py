@@ -7,13 +7,11 @@ whose output folder could not take the results computed everything, then
 lost the results; a monitor CSV on a full disk was left empty (0 bytes).
 Run: safe_writes_test.py path/to/dda"""
 import os
-import resource
-import signal
 import stat
 import subprocess
 import time
 
-from common import DDA, check, finish, read, run, scratch, write
+from common import DDA, file_size_limit, check, finish, read, run, scratch, write
 
 d = scratch("safe-writes")
 write(os.path.join(d, "result.lua"), 'dda.result{ a = 1, b = "two" }\n')
@@ -87,17 +85,10 @@ check(r.returncode == 1 and "cannot write 'late/result.csv': it is a folder" in 
 
 
 # ---- a monitor CSV whose header cannot be written is not left empty -----------------------------------
-def limited(limit):
-    def pre():
-        signal.signal(signal.SIGXFSZ, signal.SIG_IGN)
-        resource.setrlimit(resource.RLIMIT_FSIZE, (limit, limit))
-    return pre
-
-
 write(os.path.join(d, "mon.lua"), MODEL + 'm:monitor{ at = {0.25, 0.25}, name = "mon", fields = {"uy"} }\nm:run{ steps = 3 }\n')
 os.makedirs(os.path.join(d, "full"))
 p = subprocess.run([DDA, "run", "mon.lua", "--out", "full", "--quiet"], cwd=d, capture_output=True, text=True,
-                   preexec_fn=limited(0), timeout=300)
+                   preexec_fn=file_size_limit(0), timeout=300)
 check(p.returncode == 1 and "cannot write 'full/mon.csv': File too large" in p.stderr and
       not os.path.exists(os.path.join(d, "full", "mon.csv")), "a full disk at the CSV's header: no empty CSV left",
       (p.returncode, p.stderr, os.listdir(os.path.join(d, "full"))))
