@@ -149,27 +149,6 @@ bool add_results(lua_State* L, int idx, const char* what, std::string& why) {
   return true;
 }
 
-std::string results_csv(const Session& s) {
-  std::string header, row;
-  for (const auto& [k, v] : s.results) {
-    header.append(header.empty() ? "" : ",").append(csv_field(k));
-    row.append(row.empty() ? "" : ",").append(csv_field(v.text));
-  }
-  return header + "\n" + row + "\n";
-}
-
-bool write_results(const Session& s, std::string& why) {
-  try {
-    std::error_code ec;
-    std::filesystem::create_directories(s.out_dir, ec);
-    write_file_atomically(s.out_dir / "result.csv", results_csv(s));
-  } catch (const std::exception& e) {
-    why = msg("the results: ", e.what());
-    return false;
-  }
-  return true;
-}
-
 int open_module(lua_State* L) {
   if (luaL_getmetatable(L, kModelType) == LUA_TNIL) {
     lua_pop(L, 1);

@@ -9,6 +9,7 @@
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
+#include <functional>
 #include <map>
 #include <memory>
 #include <set>
@@ -103,6 +104,11 @@ struct Session {
   // simulated time, and when Ctrl-C stops it. 0: none.
   long checkpoint_steps = 0;
   double checkpoint_seconds = 0;
+  // What os.exit does in this run: given the main state and the status the
+  // script asked for, ends the run (closing the state) and returns the
+  // process's exit status. Empty: the state is closed and the process exits
+  // with the status asked for.
+  std::function<int(lua_State*, int)> on_exit;
 };
 
 // Prints "dda: warning: text" on stderr and writes it to the run log of

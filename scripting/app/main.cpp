@@ -11,7 +11,7 @@
 #include <cstring>
 #include <string>
 
-#include "scripting.hpp"
+#include "app.hpp"
 
 #ifdef DDA_HAVE_RENDER
 #include "core/error.hpp"

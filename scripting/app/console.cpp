@@ -27,8 +27,8 @@
 #include <string>
 #include <vector>
 
-#include "scripting.hpp"
-#include "wrap.hpp"
+#include "app.hpp"
+#include "core/error.hpp"
 
 #ifdef DDA_HAVE_READLINE
 #include <readline/history.h>
@@ -36,8 +36,6 @@
 #endif
 
 namespace dda::script {
-
-int docall_with_traceback(lua_State* L, int nargs, int nresults);  // runner.cpp
 
 namespace {
 
@@ -521,7 +519,7 @@ void report(lua_State* L) {
 
 int call_interruptibly(lua_State* L, int nargs, int nresults) {
   install_interrupt_handler(L);
-  const int status = docall_with_traceback(L, nargs, nresults);
+  const int status = call_with_traceback(L, nargs, nresults);
   remove_interrupt_handler();
   clear_interrupt();
   return status;
@@ -537,8 +535,11 @@ int run_console(const RunOptions& options) {
     std::fprintf(stderr, "dda: cannot create a Lua state (not enough memory)\n");
     return 1;
   }
-  lua_pushcfunction(L, guarded<dda_help>);
+  // help() at the prompt: the module's dda.help.
+  lua_getglobal(L, "dda");
+  lua_getfield(L, -1, "help");
   lua_setglobal(L, "help");
+  lua_pop(L, 1);
   std::printf(
       "dda console %s (Lua %s.%s). help() lists the API; Tab completes names; Ctrl-C stops a run at the next "
       "step; Ctrl-D leaves.\n",
