@@ -14,10 +14,10 @@
 // records of both formats (fuzz/ground_motion_seeds/). Memory is capped at
 // 1 GB through the estimates' own limit (set_own_memory_limit), under
 // libFuzzer's RSS limit: a resampling past it is refused, naming dt.
+#include <cctype>
 #include <cstdint>
 #include <cstring>
 #include <random>
-#include <regex>
 #include <sstream>
 #include <string>
 
@@ -28,6 +28,8 @@
 extern "C" std::size_t LLVMFuzzerMutate(std::uint8_t* data, std::size_t size, std::size_t max_size);
 
 namespace {
+
+constexpr const char* kAnnouncedWords = "INSTRUMENT AND BASELINE CORRECTED DATA";
 
 // The values of an accelerogram text (the words of its lines that do not start with %).
 long count_values(const std::string& text) {
@@ -53,16 +55,21 @@ extern "C" std::size_t LLVMFuzzerCustomMutator(std::uint8_t* data, std::size_t s
   std::minstd_rand random(seed);
   size = LLVMFuzzerMutate(data, size, max_size);
   if (size < 2 || random() % 4 == 0) return size;
-  // The header's count made to match the values (from the second byte: the first is the options).
+  // The header's count made to match the values (from the second byte: the
+  // first is the options): the digits before "INSTRUMENT AND BASELINE ...".
   std::string text(reinterpret_cast<char*>(data) + 1, size - 1);
-  static const std::regex announced(R"((%\s*)(\d+)(\s+INSTRUMENT AND BASELINE CORRECTED DATA))");
-  std::smatch m;
-  if (!std::regex_search(text, m, announced)) return size;
-  const std::string fixed =
-      m.prefix().str() + m[1].str() + std::to_string(count_values(text)) + m[3].str() + m.suffix().str();
-  if (fixed.size() + 1 > max_size) return size;
-  std::memcpy(data + 1, fixed.data(), fixed.size());
-  return fixed.size() + 1;
+  const std::size_t words = text.find(kAnnouncedWords);
+  if (words == std::string::npos) return size;
+  const std::size_t line = text.rfind('\n', words) == std::string::npos ? 0 : text.rfind('\n', words) + 1;
+  std::size_t end = words;
+  while (end > line && std::isspace(static_cast<unsigned char>(text[end - 1]))) --end;
+  std::size_t begin = end;
+  while (begin > line && std::isdigit(static_cast<unsigned char>(text[begin - 1]))) --begin;
+  if (begin == end) return size;
+  text.replace(begin, end - begin, std::to_string(count_values(text)));
+  if (text.size() + 1 > max_size) return size;
+  std::memcpy(data + 1, text.data(), text.size());
+  return text.size() + 1;
 }
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
@@ -70,7 +77,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   const unsigned options = data[0];
   const bool csv = options & 1;
   const auto unit = static_cast<dda::AccelerationUnit>((options >> 1) % 3);
-  static constexpr double kSteps[] = {0, 0.02, 0.005, 0.0013};  // 0: the record's own
+  static constexpr double kSteps[] = {0, 0.02, 0.01, 0.005};  // 0: the record's own
   const double dt = kSteps[(options >> 3) % 4];
   const int baseline = static_cast<int>((options >> 5) % 7);
   std::istringstream in(std::string(reinterpret_cast<const char*>(data) + 1, size - 1));
