@@ -4,6 +4,7 @@
 #include <filesystem>
 #include <system_error>
 
+#include "background_run.hpp"
 #include "output_file.hpp"
 #include "scripting.hpp"
 #include "wrap.hpp"
@@ -153,6 +154,7 @@ int open_module(lua_State* L) {
   if (luaL_getmetatable(L, kModelType) == LUA_TNIL) {
     lua_pop(L, 1);
     register_model(L);  // first: the others add methods to dda.Model
+    register_background(L);
     register_geometry(L);
     register_materials(L);
     register_block(L);

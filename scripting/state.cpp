@@ -3,9 +3,11 @@
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
+#include <mutex>
 
 #include "core/error.hpp"
 #include "lua_support.hpp"
+#include "run_control.hpp"
 #include "scripting.hpp"
 
 namespace dda::script {
@@ -143,6 +145,7 @@ int script_exit(lua_State* L) {
   lua_pop(L, 1);
   // A copy: the session goes with the state that on_exit closes.
   if (const std::function<int(lua_State*, int)> on_exit = session(main).on_exit) std::exit(on_exit(main, requested));
+  stop_background_runs();
   lua_close(main);  // the console, tests: close every model, then exit
   std::exit(requested);
 }
@@ -183,6 +186,7 @@ lua_State* new_state(Session s) {
 }
 
 bool run_file(lua_State* L, const std::string& path, const std::vector<std::string>& args, std::string& error) {
+  const std::lock_guard lua(lua_gate());  // run_control.hpp
   // arg table, as lua.c: arg[0] = script, arg[1..] = its arguments.
   lua_createtable(L, static_cast<int>(args.size()), 1);
   lua_pushstring(L, path.c_str());
@@ -233,6 +237,7 @@ bool run_file(lua_State* L, const std::string& path, const std::vector<std::stri
 }
 
 bool run_string(lua_State* L, const std::string& code, const std::string& chunkname, std::string& error) {
+  const std::lock_guard lua(lua_gate());  // run_control.hpp
   if (luaL_loadbufferx(L, code.data(), code.size(), ("=" + chunkname).c_str(), "t") != LUA_OK) {
     error = pop_error(L);
     return false;

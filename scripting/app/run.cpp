@@ -16,8 +16,10 @@
 #include "app.hpp"
 #include "core/error.hpp"
 #include "dda_version.hpp"
+#include "live_server.hpp"
 #include "model.hpp"
 #include "output_file.hpp"
+#include "run_control.hpp"
 
 namespace dda::script {
 
@@ -118,6 +120,12 @@ void remove_leftovers(Session& s, std::filesystem::file_time_type started) {
 // queued frames and files), the run log's last line. Returns the exit status
 // (`requested`: the script's os.exit status, when it is still ok).
 int finish_batch(lua_State* L, bool ok, std::string error, int requested, std::chrono::steady_clock::time_point start) {
+  // Background runs the script left going end first (a paused one only when
+  // a live view can resume it); one that failed fails the run.
+  if (ok) wait_background_runs(session(L).live != nullptr, interrupt_requested);
+  for (const std::string& failure : background_failures())
+    if (ok) ok = false, error = failure;
+  stop_background_runs();
   const bool interrupted = interrupt_requested();
   const int interrupted_status = 128 + interrupt_signal();  // 130 (Ctrl-C), 143 (SIGTERM)
   remove_interrupt_handler();
@@ -226,6 +234,12 @@ int run_batch(const RunOptions& options) {
     return 1;
   }
   set_run_log(&session(L).log);
+  if (std::string live_error; !start_live_view(L, options.script, live_error)) {
+    std::fprintf(stderr, "dda: %s\n", live_error.c_str());
+    session(L).log.line("error: " + live_error);
+    lua_close(L);
+    return 2;
+  }
   install_interrupt_handler(L);
   // os.exit ends the run as a return does: results and outputs written and checked.
   session(L).on_exit = [start](lua_State* main, int requested) {
