@@ -28,6 +28,10 @@ packages=(g++ cmake make pkg-config libeigen3-dev libtbb-dev liblua5.4-dev
           # Tests: the live view in a real browser (headless Chromium via chromedriver).
           chromium chromium-driver)
 if [ "${WITH_FFMPEG:-0}" = 1 ]; then packages+=(ffmpeg); fi
+# CI (.ci/run): the format check of every source.
+packages+=(clang-format)
+# Fuzzing (fuzz/, DDA_FUZZ; docs/robustness.md): clang, its libFuzzer and sanitizer runtime.
+if [ "${WITH_FUZZ:-0}" = 1 ]; then packages+=(clang libclang-rt-dev); fi
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
