@@ -531,6 +531,23 @@ dda::History TimeInput::engine_history() const {
   return dda::History(std::move(points), what_);
 }
 
+void TimeInput::check_loaded(const LoadCheck& check, const std::string& name) {
+  what_ = printable(what_), where_ = printable(where_);
+  if (kind_ == Kind::Constant) check.finite(value_, name, "'s value");
+  if (kind_ != Kind::Table) return;
+  check.require(!t_.empty() && t_.size() == v_.size(), name, "'s table has ", t_.size(), " times and ", v_.size(),
+                " values");
+  for (std::size_t i = 0; i < t_.size(); ++i)
+    check.require(std::isfinite(t_[i]) && std::isfinite(v_[i]) && (i == 0 || t_[i] >= t_[i - 1]), name,
+                  "'s table point ", i + 1, " is not finite or goes back in time");
+}
+
+void VecTimeInput::check_loaded(const LoadCheck& check, const std::string& name) {
+  what_ = printable(what_), where_ = printable(where_);
+  x_.check_loaded(check, name + " x");
+  y_.check_loaded(check, name + " y");
+}
+
 VecTimeInput VecTimeInput::function(lua_State* L, int idx, std::string_view call, std::string_view what) {
   if (lua_type(L, idx) != LUA_TFUNCTION) fail(call, ": ", what, " must be a function, got ", type_of(L, idx));
   VecTimeInput h;

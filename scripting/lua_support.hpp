@@ -21,10 +21,13 @@
 #include <vector>
 
 #include "core/error.hpp"
+#include "core/load_check.hpp"
 #include "core/types.hpp"
 #include "loading/history.hpp"
 
 namespace dda::script {
+
+using dda::LoadCheck;
 
 // A mistake in a script (wrong type, unknown option, bad value). The message
 // names the call and the argument; the script position is added when it is
@@ -215,9 +218,14 @@ class TimeInput {
   }
   bool is_lost_function() const { return kind_ == Kind::Function && !fn_.valid(); }
   const std::string& where() const { return where_; }
+  // Read from a checkpoint: a finite constant, or a table of as many finite
+  // values as times, the times not decreasing; its text made printable
+  // (dda::printable: it reaches messages). Throws dda::Error naming the damage.
+  void check_loaded(const LoadCheck& check, const std::string& name);
 
  private:
   enum class Kind { Constant, Table, Function };
+  friend constexpr Kind enum_last(Kind) { return Kind::Function; }  // (core/archive.hpp)
   Kind kind_ = Kind::Constant;
   double value_ = 0;
   std::vector<double> t_, v_;
@@ -248,6 +256,7 @@ class VecTimeInput {
   }
   bool is_lost_function() const { return lost_function_ || x_.is_lost_function() || y_.is_lost_function(); }
   std::string where() const { return lost_function_ ? where_ : x_.is_lost_function() ? x_.where() : y_.where(); }
+  void check_loaded(const LoadCheck& check, const std::string& name);  // as TimeInput's
 
  private:
   TimeInput x_, y_;

@@ -169,6 +169,23 @@ double ScriptModel::extent() const {
 
 // ---- loads -------------------------------------------------------------------------------
 
+namespace {
+// While a load's Lua function runs (when the load is given, and before each
+// step) the model is busy: the function cannot change, step or close it
+// (check_not_busy), so the World is still there when it returns.
+class BusyScope {
+ public:
+  explicit BusyScope(bool& flag) : flag_(flag), was_(flag) { flag_ = true; }
+  ~BusyScope() { flag_ = was_; }
+  BusyScope(const BusyScope&) = delete;
+  BusyScope& operator=(const BusyScope&) = delete;
+
+ private:
+  bool& flag_;
+  bool was_;
+};
+}  // namespace
+
 int ScriptModel::add_point_load(BlockId b, const Vec2& point, ForceInput force, lua_State* L) {
   ScriptPointLoad load;
   load.block = b;
@@ -191,7 +208,12 @@ void ScriptModel::hand_over(ScriptPointLoad& load, lua_State* L) {
     world_->set_point_load_history(load.world_id, load.force.direction, load.force.magnitude.engine_history());
     load.engine_history = true;
   } else {
-    push_force(load, load.force.at(L, load_time()));
+    Vec2 f;
+    {
+      BusyScope busy(busy_);
+      f = load.force.at(L, load_time());
+    }
+    push_force(load, f);
   }
 }
 
@@ -236,7 +258,10 @@ void ScriptModel::hand_over(ScriptTarget& t, lua_State* L) {
       break;
     case ScriptTarget::Mode::Displacement:
       if (t.input.is_function()) {
-        t.current = t.input.at(L, load_time());
+        {
+          BusyScope busy(busy_);
+          t.current = t.input.at(L, load_time());
+        }
         for (int id : t.world_ids) world_->set_target_displacement(id, Vec2(t.current, 0));
       } else {
         for (int id : t.world_ids) world_->set_target_history(id, t.input.engine_history());
@@ -269,7 +294,10 @@ void ScriptModel::set_pressure(int id, TimeInput p, lua_State* L) {
 
 void ScriptModel::hand_over(ScriptPressure& pr, lua_State* L) {
   if (pr.pressure.is_function()) {
-    pr.current = pr.pressure.at(L, load_time());
+    {
+      BusyScope busy(busy_);
+      pr.current = pr.pressure.at(L, load_time());
+    }
     world_->set_pressure(pr.world_id, pr.current);
   } else {
     world_->set_pressure_history(pr.world_id, pr.pressure.engine_history());
@@ -367,11 +395,7 @@ double ScriptModel::load_time() const {
 }
 
 void ScriptModel::apply_loads(lua_State* L, double t) {
-  busy_ = true;
-  struct Reset {
-    bool& flag;
-    ~Reset() { flag = false; }
-  } reset{busy_};
+  BusyScope busy(busy_);
   for (ScriptPointLoad& load : loads_) {
     if (load.force.constant() || load.force.engine_driven()) continue;
     push_force(load, load.force.at(L, t));
@@ -442,6 +466,44 @@ void ScriptModel::script_fields(Archive& ar, std::vector<SavedMonitor>& monitors
   ar(monitors);
 }
 
+void ScriptModel::check_loaded(const LoadCheck& check) {
+  const World& w = *world_;
+  check.require(number >= 1, "its model number is ", number);
+  for (std::size_t i = 0; i < loads_.size(); ++i) {
+    ScriptPointLoad& l = loads_[i];
+    check.index(l.world_id, w.point_load_count(), "point loads", "script point load ", i, "'s load");
+    check.index(l.block, w.block_count(), "blocks", "script point load ", i, "'s block");
+    check.require(l.point.allFinite() && l.current.allFinite() && l.force.direction.allFinite(), "script point load ",
+                  i, " is not finite");
+    l.force.xy.check_loaded(check, msg("script point load ", i, "'s force"));
+    l.force.magnitude.check_loaded(check, msg("script point load ", i, "'s magnitude"));
+  }
+  for (std::size_t i = 0; i < pressures_.size(); ++i) {
+    ScriptPressure& p = pressures_[i];
+    check.index(p.world_id, w.pressure_count(), "pressures", "script pressure ", i, "'s pressure");
+    for (const EdgeRef& e : p.edges) {
+      check.index(e.block, w.block_count(), "blocks", "script pressure ", i, "'s block");
+      check.index(e.edge, w.block_vertices(e.block).size(), "edges", "script pressure ", i, "'s edge");
+    }
+    check.finite(p.current, "script pressure ", i, "'s value");
+    p.pressure.check_loaded(check, msg("script pressure ", i));
+  }
+  for (std::size_t i = 0; i < targets_.size(); ++i) {
+    ScriptTarget& t = targets_[i];
+    for (const int id : t.world_ids) check.index(id, w.target_count(), "targets", "script target ", i, "'s target");
+    check.require(t.vector.allFinite() && std::isfinite(t.current), "script target ", i, " is not finite");
+    t.input.check_loaded(check, msg("script target ", i));
+  }
+  check.require(fixed_points_ >= 0 && static_cast<std::size_t>(fixed_points_) <= w.fixed_point_count(), "it counts ",
+                fixed_points_, " script fixed points of ", w.fixed_point_count());
+  for (std::size_t i = 0; i < saved_monitors_.size(); ++i) {
+    SavedMonitor& m = saved_monitors_[i];
+    m.name = printable(m.name);
+    check.size(m.times.size(), m.steps.size(), "steps", "monitor ", i, "'s times");
+    for (const auto& v : m.values) check.size(v.size(), m.steps.size(), "steps", "monitor ", i, "'s values");
+  }
+}
+
 void ScriptModel::save(const std::filesystem::path& path) const {
   std::vector<SavedMonitor> monitors;
   for (const auto& m : monitors_) monitors.push_back({m->name, m->steps, m->times, m->values});
@@ -451,10 +513,15 @@ void ScriptModel::save(const std::filesystem::path& path) const {
 }
 
 std::unique_ptr<ScriptModel> ScriptModel::load(const std::filesystem::path& path, std::vector<std::string>& warnings) {
-  Checkpoint c = load_checkpoint(path);
+  return from_checkpoint(load_checkpoint(path), msg("checkpoint '", path.string(), "'"), warnings);
+}
+
+std::unique_ptr<ScriptModel> ScriptModel::from_checkpoint(Checkpoint c, const std::string& what,
+                                                          std::vector<std::string>& warnings) {
   auto m = std::make_unique<ScriptModel>(std::move(c.world));
-  ArchiveReader ar(c.extra, msg("checkpoint '", path.string(), "'"));
+  ArchiveReader ar(c.extra, what);
   m->script_fields(ar, m->saved_monitors_);
+  m->check_loaded(LoadCheck(ar.what()));
   // Lua functions do not travel: each such input keeps the value it gave last.
   auto lost = [&](const char* what, std::size_t i, const std::string& where, const std::string& value) {
     warnings.push_back(msg(what, " ", i + 1, " was driven by a Lua function (", where,

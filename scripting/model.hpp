@@ -18,6 +18,7 @@
 
 #include "geometry/cutting.hpp"
 #include "lua_support.hpp"
+#include "world/checkpoint.hpp"
 #include "world/cut_blocks.hpp"
 #include "world/world.hpp"
 
@@ -108,6 +109,7 @@ struct ScriptPointLoad {
 // points, all driven by one input.
 struct ScriptTarget {
   enum class Mode { Vector, Displacement, Velocity, Acceleration };
+  friend constexpr Mode enum_last(Mode) { return Mode::Acceleration; }  // (core/archive.hpp)
   std::vector<int> world_ids;
   Mode mode = Mode::Vector;
   Vec2 vector = Vec2::Zero();  // Mode::Vector
@@ -270,6 +272,9 @@ class ScriptModel {
   // dda.load: the model of a checkpoint; an input that was a Lua function
   // keeps its last value (one warning each in `warnings`).
   static std::unique_ptr<ScriptModel> load(const std::filesystem::path& path, std::vector<std::string>& warnings);
+  // The same from a checkpoint's contents (`what` names it in messages).
+  static std::unique_ptr<ScriptModel> from_checkpoint(Checkpoint c, const std::string& what,
+                                                      std::vector<std::string>& warnings);
   // dda run --restart: this model, built again by the script, takes the
   // state of `saved` (its loads keep the script's inputs; monitors take the
   // saved records, their files keep their rows up to the checkpoint). Throws
@@ -293,6 +298,9 @@ class ScriptModel {
   void push_force(ScriptPointLoad& load, const Vec2& f);
   template <class Archive>
   void script_fields(Archive& ar, std::vector<SavedMonitor>& monitors);
+  // Read from a checkpoint: every load, target and edge against the World
+  // read with it, each monitor's records of equal length, text printable.
+  void check_loaded(const LoadCheck& check);
 
   std::unique_ptr<World> world_;
   geometry::CutInput cut_;

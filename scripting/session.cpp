@@ -49,9 +49,11 @@ void stop_hook(lua_State* L, lua_Debug*) {
   luaL_error(L, "interrupted!");
 }
 
-extern "C" void on_sigint(int sig) {
-  std::signal(sig, SIG_DFL);  // a second Ctrl-C terminates the process
-  g_interrupted = 1;
+// SIGINT (Ctrl-C) and SIGTERM (what a batch queue sends first, before
+// SIGKILL): the same stop at the next step boundary.
+extern "C" void on_stop_signal(int sig) {
+  std::signal(sig, SIG_DFL);  // a second one terminates the process
+  g_interrupted = sig;
   if (g_state) lua_sethook(g_state, stop_hook, LUA_MASKCALL | LUA_MASKRET | LUA_MASKCOUNT, 1);
 }
 
@@ -75,16 +77,22 @@ void install_interrupt_handler(lua_State* L) {
   g_state = lua_tothread(L, -1);
   lua_pop(L, 1);
   g_interrupted = 0;
-  std::signal(SIGINT, on_sigint);
+  std::signal(SIGINT, on_stop_signal);
+  std::signal(SIGTERM, on_stop_signal);
 }
 
 void remove_interrupt_handler() {
   std::signal(SIGINT, SIG_DFL);
+  std::signal(SIGTERM, SIG_DFL);
   if (g_state) lua_sethook(g_state, nullptr, 0, 0);
   g_state = nullptr;
 }
 
 bool interrupt_requested() { return g_interrupted != 0; }
+
+int interrupt_signal() { return g_interrupted; }
+
+const char* interrupt_name() { return g_interrupted == SIGTERM ? "terminated (SIGTERM)" : "interrupted (Ctrl-C)"; }
 
 void clear_interrupt() { g_interrupted = 0; }
 
@@ -93,7 +101,7 @@ void check_interrupt(const char* where_text) {
   // The hook has done its job (we stop here, at a step boundary); clear it so
   // it does not fire again inside the error handler.
   if (g_state) lua_sethook(g_state, nullptr, 0, 0);
-  throw Interrupted(msg("interrupted (Ctrl-C) ", where_text));
+  throw Interrupted(msg(interrupt_name(), " ", where_text));
 }
 
 void stop_if_params_only(lua_State* L, const char* what) {

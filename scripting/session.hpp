@@ -140,14 +140,18 @@ Session& session(lua_State* L);
 // Replaces the session (called by `dda run` / `dda console` before loading the script).
 void set_session(lua_State* L, Session s);
 
-// ---- Ctrl-C -----------------------------------------------------------------
-// While installed, SIGINT sets a flag that stepping loops check at every step
-// boundary (they stop, flush and raise "interrupted"), and, like lua.c, a hook
-// that stops plain Lua code too. A second Ctrl-C before the first is handled
-// kills the process the default way.
+// ---- Ctrl-C and SIGTERM -------------------------------------------------------
+// While installed, SIGINT and SIGTERM set a flag that stepping loops check
+// at every step boundary (they stop, write a final checkpoint when the run
+// writes them, flush and raise "interrupted"), and, like lua.c, a hook that
+// stops plain Lua code too. A second signal before the first is handled
+// kills the process the default way. `dda run` then exits 128 + the signal
+// (130 for Ctrl-C, 143 for SIGTERM).
 void install_interrupt_handler(lua_State* L);
 void remove_interrupt_handler();
 bool interrupt_requested();
+int interrupt_signal();        // SIGINT or SIGTERM, 0 while none came
+const char* interrupt_name();  // "interrupted (Ctrl-C)", "terminated (SIGTERM)"
 void clear_interrupt();
 // Throws Interrupted if Ctrl-C was pressed (called between steps).
 void check_interrupt(const char* where_text);

@@ -1,7 +1,10 @@
 // Model geometry: domain, holes (dda.Hole), material regions, joint sets,
 // joint lines and block generation through dda::geometry::cut_blocks.
+#include <climits>
 #include <cmath>
 
+#include "core/memory.hpp"
+#include "geometry/cutting.hpp"
 #include "wrap.hpp"
 
 namespace dda::script {
@@ -52,6 +55,11 @@ std::vector<Vec2> read_shape(const Options& o, bool allow_circle) {
   if (!(c[2] > 0)) fail(o.call(), ": the circle's radius must be positive, got ", c[2]);
   const long n = o.integer("segments", 32);
   if (n < 3) fail(o.call(), ": option 'segments' must be at least 3, got ", n);
+  // Refused before the points are made: the cut takes about a kilobyte a segment.
+  check_memory_need(geometry::kCutBytesPerCrossing * static_cast<double>(n), memory_headroom(),
+                    msg(o.call(), ": a circle of ", n, " segments"), "cutting takes about 1 kB a segment",
+                    "give fewer segments (option 'segments', 32 by default)");
+  if (n > INT_MAX) fail(o.call(), ": option 'segments' must be at most ", INT_MAX, ", got ", n);
   std::vector<Vec2> pts;
   for (long k = 0; k < n; ++k) {
     const double a = 2 * kPi * double(k) / double(n);

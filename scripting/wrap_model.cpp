@@ -2,6 +2,7 @@
 // in wrap_geometry.cpp; materials, blocks, edges, loads and monitors add their
 // constructors to the model from their own files.)
 #include <cinttypes>
+#include <climits>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -46,6 +47,7 @@ void parse_controls(const Options& o, Controls& c) {
       case ControlType::Integer: {
         const long n = o.integer(s.name, 0);
         if (!s.range.admits(static_cast<double>(n))) fail(call, ": option '", s.name, "' ", s.range.rule, ", got ", n);
+        if (n < INT_MIN || n > INT_MAX) fail(call, ": option '", s.name, "' must be at most ", INT_MAX, ", got ", n);
         s.integer(c) = static_cast<int>(n);
         break;
       }

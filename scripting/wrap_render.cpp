@@ -203,8 +203,9 @@ int m_frames(lua_State* L) {
   so.frame = read_frame_options(o, &so.grow_range);
   so.folder = in_out_dir(L, o.string("folder", "frames"));
   so.prefix = o.string("prefix", "");
-  so.every_steps = o.integer("every", 0);
-  if (so.every_steps < 0) fail("m:frames: option 'every' must be positive, got ", so.every_steps);
+  so.every_steps = o.integer("every", 0);  // 0: not given (every_time, or every step)
+  if (o.has("every") && so.every_steps < 1)
+    fail("m:frames: option 'every' must be a whole number of steps >= 1, got ", so.every_steps);
   so.every_time = o.non_negative("every_time", 0);
   so.digits = static_cast<int>(o.integer("digits", so.digits));
   so.fixed = o.boolean("fixed", so.fixed);
@@ -543,10 +544,14 @@ void attach_session_frames(lua_State* L, int model_idx) {
     if (!so.movie.empty())
       so.movie = so.movie.parent_path() / (so.movie.stem().string() + from + so.movie.extension().string());
   }
-  so.frame.validate();
   so.on_error = render::OnError::Continue;  // a command-line convenience never stops the run
   so.warn = [](const std::string& text) { warn(text); };
-  render_hook(*box->model).sequences.push_back(std::make_unique<render::FrameSequence>(std::move(so)));
+  try {
+    so.frame.validate();  // (checked on the command line already)
+    render_hook(*box->model).sequences.push_back(std::make_unique<render::FrameSequence>(std::move(so)));
+  } catch (const Error& e) {  // the command line's options, not the script's line, are the cause
+    fail("dda run --frames (the command line): ", e.what());
+  }
 }
 
 }  // namespace dda::script

@@ -121,7 +121,11 @@ void attach_session_vtu(lua_State* L, int model_idx) {
   VtuOptions v;
   v.folder = s.out_dir / (s.models_created <= 1 ? std::string("vtu") : msg("vtu_", s.models_created));
   v.every_steps = s.vtu_every;
-  vtu_hook(*box->model).series.push_back(std::make_unique<VtuSeries>(std::move(v)));
+  try {
+    vtu_hook(*box->model).series.push_back(std::make_unique<VtuSeries>(std::move(v)));
+  } catch (const Error& e) {  // the command line's option, not the script's line, is the cause
+    fail("dda run --vtu ", s.vtu_every, " (the command line): ", e.what());
+  }
 }
 
 }  // namespace dda::script

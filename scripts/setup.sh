@@ -39,10 +39,13 @@ packages=(g++ cmake make pkg-config libeigen3-dev libtbb-dev liblua5.4-dev
 # help2man makes the man page the install test installs.
 test_packages=(libgtest-dev python3-vtk9 help2man
                # Tests: the live view in a real browser (headless Chromium via chromedriver).
-               chromium chromium-driver)
+               chromium chromium-driver
+               # CI (.ci/run): the format check of every source.
+               clang-format)
 if [ $tests = 1 ]; then packages+=("${test_packages[@]}"); fi
 if [ "${WITH_FFMPEG:-0}" = 1 ]; then packages+=(ffmpeg); fi
-
+# Fuzzing (fuzz/, DDA_FUZZ; docs/robustness.md): clang, its libFuzzer and sanitizer runtime.
+if [ "${WITH_FUZZ:-0}" = 1 ]; then packages+=(clang libclang-rt-dev); fi
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

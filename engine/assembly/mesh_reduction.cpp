@@ -8,6 +8,7 @@
 #include "block/mesh.hpp"
 #include "core/archive.hpp"
 #include "core/error.hpp"
+#include "core/load_check.hpp"
 #include "core/parallel.hpp"
 
 namespace dda {
@@ -206,15 +207,14 @@ void MeshedSolver::save_state(ArchiveWriter& ar) const {
 void MeshedSolver::load_state(ArchiveReader& ar) {
   std::vector<std::vector<double>> factorised;
   ar(mesh_preconditioning_, refactor_, factorisations_, factorised);
-  if (factorised.size() != groups_.size())
-    throw Error(msg("checkpoint: the meshed solver's factors are for ", factorised.size(),
-                    " meshed blocks, the model has ", groups_.size()));
+  const LoadCheck check(ar.what());
+  check.require(factorisations_ >= 0, "its meshed solver's factorisations number ", factorisations_);
+  check.size(factorised.size(), groups_.size(), "meshed blocks", "the meshed solver's factors");
   for (std::size_t g = 0; g < groups_.size(); ++g) {
     MeshGroup& group = groups_[g];
     if (factorised[g].empty()) continue;
     gather_entries(group, [](int) -> Mat6 { return Mat6::Zero(); });
-    if (group.entries.size() != factorised[g].size())
-      throw Error(msg("checkpoint: meshed block ", g, "'s factor does not fit its mesh"));
+    check.size(factorised[g].size(), group.entries.size(), "entries", "meshed block ", g, "'s factor");
     for (std::size_t i = 0; i < group.entries.size(); ++i)
       group.entries[i] = Eigen::Triplet<double>(group.entries[i].row(), group.entries[i].col(), factorised[g][i]);
     factorise(group);

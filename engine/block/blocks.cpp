@@ -2,6 +2,8 @@
 
 #include "block/displacement.hpp"
 #include "core/error.hpp"
+#include "core/load_check.hpp"
+#include "geometry/polygon.hpp"
 
 namespace dda {
 
@@ -23,6 +25,79 @@ void check_edges(const Blocks& blocks, const std::vector<EdgeRef>& edges, const 
     if (e.edge < 0 || e.edge >= n)
       throw Error(msg(what, ": block ", e.block, " has no edge ", e.edge, " (it has ", n, ")"));
   }
+}
+
+void Blocks::check_loaded(const LoadCheck& check, std::size_t rocks, std::size_t joints) const {
+  // The outlines first: everything else is sized by them.
+  check.require(!vertex_start.empty() && vertex_start[0] == 0, "the blocks' first outline does not start at 0");
+  const std::size_t n = count();
+  for (std::size_t b = 0; b < n; ++b) {
+    const long long start = vertex_start[b], end = vertex_start[b + 1];
+    check.require(end - start >= 3 && end <= static_cast<long long>(vertices.size()), "block ", b,
+                  "'s outline runs from vertex ", start, " to ", end, " of ", vertices.size());
+  }
+  check.size(vertices.size(), static_cast<std::size_t>(vertex_start[n]), "vertices", "the blocks' outlines");
+  const std::size_t nv = vertices.size();
+  auto per_block = [&](std::size_t size, const char* name) { check.size(size, n, "blocks", "the blocks' ", name); };
+  per_block(centroid.size(), "centroids");
+  per_block(area.size(), "areas");
+  per_block(sxx.size(), "moments sxx"), per_block(syy.size(), "moments syy"), per_block(sxy.size(), "moments sxy");
+  per_block(mass.size(), "masses");
+  per_block(material.size(), "materials");
+  per_block(stress.size(), "stresses");
+  per_block(velocity.size(), "velocities");
+  per_block(last_displacement.size(), "last displacements");
+  per_block(acceleration.size(), "accelerations");
+  per_block(out_of_balance.size(), "out-of-balance forces");
+  per_block(initial_centroid.size(), "initial centroids");
+  auto per_vertex = [&](std::size_t size, const char* name) { check.size(size, nv, "vertices", "the blocks' ", name); };
+  per_vertex(initial_vertices.size(), "initial vertices");
+  per_vertex(edge_joint.size(), "edge joints");
+  per_vertex(edge_tag.size(), "edge tags");
+
+  check.all_finite(vertices, "vertex"), check.all_finite(initial_vertices, "initial vertex");
+  check.all_finite(centroid, "centroid of block"), check.all_finite(initial_centroid, "initial centroid of block");
+  check.all_finite(sxx, "moment sxx of block"), check.all_finite(syy, "moment syy of block");
+  check.all_finite(sxy, "moment sxy of block");
+  check.all_finite(stress, "stress of block"), check.all_finite(velocity, "velocity of block");
+  check.all_finite(last_displacement, "last displacement of block");
+  for (std::size_t b = 0; b < n; ++b) {
+    check.require(area[b] > 0 && std::isfinite(area[b]) && signed_area(outline(static_cast<BlockId>(b))) > 0, "block ",
+                  b, " has no positive area (", area[b], ")");
+    check.require(mass[b] > 0 && std::isfinite(mass[b]), "block ", b, "'s mass is not positive (", mass[b], ")");
+    check.index(material[b], rocks, "rock materials", "block ", b, "'s material");
+  }
+  for (std::size_t v = 0; v < nv; ++v) {
+    check.index(edge_joint[v], joints, "joint materials", "edge ", v, "'s joint material");
+    check.index_or_none(edge_tag[v].joint_material, joints, "joint materials", "edge ", v, "'s tag's joint material");
+    check.require(edge_tag[v].hole >= -1, "edge ", v, "'s tag names hole ", edge_tag[v].hole);
+  }
+
+  // Meshes (block/mesh.hpp): all three arrays empty, or every element a
+  // triangle on mesh nodes, numbered from 0 without gaps beyond the elements'
+  // corners, and every vertex of a first-order block on none.
+  if (mesh.empty() && node.empty() && inner_edge.empty()) return;
+  per_block(mesh.size(), "meshes");
+  per_vertex(node.size(), "mesh nodes");
+  per_vertex(inner_edge.size(), "inner edges");
+  for (std::size_t b = 0; b < n; ++b) {
+    check.index_or_none(mesh[b], n, "blocks", "block ", b, "'s mesh");
+    const bool element = mesh[b] >= 0;
+    check.require(!element || vertex_count(static_cast<BlockId>(b)) == 3, "element ", b, " of mesh ", mesh[b], " has ",
+                  vertex_count(static_cast<BlockId>(b)), " corners");
+    for (int v = vertex_start[b]; v < vertex_start[b + 1]; ++v) {
+      if (element)
+        check.index(node[v], 3 * n, "element corners", "vertex ", v, "'s mesh node");
+      else
+        check.require(node[v] == -1, "vertex ", v, " of first-order block ", b, " stands on mesh node ", node[v]);
+    }
+  }
+}
+
+void check_loaded(const LoadCheck& check, const MaterialPoint& p, const Blocks& blocks, const std::string& what) {
+  check.index(p.block, blocks.count(), "blocks", what, "'s block");
+  check.finite(p.point, what, "'s point");
+  check.finite(p.origin, what, "'s origin");
 }
 
 }  // namespace dda

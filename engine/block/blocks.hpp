@@ -16,6 +16,8 @@
 
 namespace dda {
 
+class LoadCheck;
+
 struct Blocks {
   // Hot: the step's arrays.
   std::vector<int> vertex_start{0};
@@ -55,6 +57,11 @@ struct Blocks {
        mesh);
   }
 
+  // Read from a checkpoint (core/load_check.hpp): the outlines, every array
+  // sized for the blocks or their vertices, every material, joint, node and
+  // mesh in range, the geometry finite. Throws dda::Error naming the damage.
+  void check_loaded(const LoadCheck& check, std::size_t rocks, std::size_t joints) const;
+
   std::size_t count() const { return vertex_start.empty() ? 0 : vertex_start.size() - 1; }
   int vertex_count(BlockId b) const { return vertex_start[b + 1] - vertex_start[b]; }
   std::span<const Vec2> outline(BlockId b) const {
@@ -86,5 +93,8 @@ IntegratedTt block_tt(const Blocks& blocks, std::size_t b, MeshMass mesh_mass);
 
 // Throws dda::Error, naming `what`, unless every edge exists (and there is one).
 void check_edges(const Blocks& blocks, const std::vector<EdgeRef>& edges, const std::string& what);
+
+// Read from a checkpoint: the block exists and the points are finite.
+void check_loaded(const LoadCheck& check, const MaterialPoint& p, const Blocks& blocks, const std::string& what);
 
 }  // namespace dda

@@ -96,6 +96,24 @@ TriangleMesh mesh_polygon(std::span<const Vec2> outline, double size, const std:
   return mesh_concave_polygon(outline, size, what);
 }
 
+double estimated_mesh_elements(std::span<const Vec2> v, double size) {
+  const int n = static_cast<int>(v.size());
+  if (!(size > 0) || n < 3) return 0;
+  if (first_reflex_vertex(v) >= 0) return std::abs(polygon_moments(v).area) / (0.2 * size * size);
+  double longest = 0;
+  for (int k = 0; k < n; ++k) longest = std::max(longest, (v[(k + 1) % n] - v[k]).norm());
+  // As mesh_convex_polygon divides (in floating point: the count may not fit an int).
+  auto parts = [&](double length) { return std::max(1.0, std::ceil(length / size - 1e-9)); };
+  if (n == 3) return parts(longest) * parts(longest);
+  if (n == 4)
+    return 4 * parts(std::max((v[1] - v[0]).norm(), (v[2] - v[3]).norm())) *
+           parts(std::max((v[3] - v[0]).norm(), (v[2] - v[1]).norm()));
+  const Vec2 c = polygon_moments(v).centroid;
+  double fan_longest = longest;
+  for (int k = 0; k < n; ++k) fan_longest = std::max(fan_longest, (v[k] - c).norm());
+  return n * parts(fan_longest) * parts(fan_longest);
+}
+
 TriangleMesh mesh_convex_polygon(std::span<const Vec2> v, double size, const std::string& what) {
   if (!(size > 0) || !std::isfinite(size)) throw Error(msg(what, ": mesh size ", size, " must be positive"));
   const int n = static_cast<int>(v.size());

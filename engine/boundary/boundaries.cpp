@@ -6,6 +6,7 @@
 #include "block/displacement.hpp"
 #include "block/motion.hpp"
 #include "core/error.hpp"
+#include "core/load_check.hpp"
 
 namespace dda {
 
@@ -349,6 +350,38 @@ void Boundaries::update(const Blocks& blocks, const VecX& d_all, const TimeSchem
     p.point += du;
   }
   for (FreeFieldColumn& column : columns_) column.commit();
+}
+
+void Boundaries::check_loaded(const LoadCheck& check, const Blocks& blocks) const {
+  for (std::size_t i = 0; i < fixed_points_.size(); ++i)
+    dda::check_loaded(check, fixed_points_[i], blocks, msg("fixed point ", i));
+  for (std::size_t i = 0; i < targets_.size(); ++i) {
+    const DisplacementTarget& t = targets_[i];
+    check.index(t.block, blocks.count(), "blocks", "displacement target ", i, "'s block");
+    check.require(t.point.allFinite() && t.origin.allFinite() && t.direction.allFinite() && t.target.allFinite(),
+                  "displacement target ", i, " is not finite");
+  }
+  for (std::size_t b = 0; b < boundaries_.size(); ++b) {
+    const Boundary& g = boundaries_[b];
+    check.require(g.first >= 0 && g.count >= 0 && g.first <= static_cast<long long>(boundary_points_.size()) - g.count,
+                  "boundary ", b, "'s points ", g.first, " to ", static_cast<long long>(g.first) + g.count, " of ",
+                  boundary_points_.size());
+    if (g.kind == BoundaryKind::FreeField)
+      check.index(g.column, columns_.size(), "free-field columns", "free-field boundary ", b, "'s column");
+  }
+  for (std::size_t i = 0; i < boundary_points_.size(); ++i) {
+    const BoundaryPoint& p = boundary_points_[i];
+    check.index(p.boundary, boundaries_.size(), "boundaries", "boundary point ", i, "'s boundary");
+    check.index(p.block, blocks.count(), "blocks", "boundary point ", i, "'s block");
+    const Boundary& g = boundaries_[p.boundary];
+    check.require(static_cast<long long>(i) >= g.first && static_cast<long long>(i) < g.first + g.count,
+                  "boundary point ", i, " is not among its boundary's points");
+    if (g.kind != BoundaryKind::FreeField) continue;
+    const FreeFieldColumn& column = columns_[g.column];
+    check.index(p.node, static_cast<std::size_t>(column.nodes()), "column nodes", "boundary point ", i, "'s node");
+    check.index(p.segment, static_cast<std::size_t>(column.nodes() - 1), "column segments", "boundary point ", i,
+                "'s segment");
+  }
 }
 
 }  // namespace dda

@@ -16,6 +16,7 @@
 namespace dda {
 
 enum class BoundaryKind { Viscous, Spring, FreeField };
+constexpr BoundaryKind enum_last(BoundaryKind) { return BoundaryKind::FreeField; }  // (core/archive.hpp)
 
 class Boundaries {
  public:
@@ -35,6 +36,8 @@ class Boundaries {
   void set_target_acceleration_history(int id, History acceleration);  // integrated twice, from rest
   Vec2 target_point_displacement(int id) const;
   Vec2 target_value(int id) const;
+  std::size_t fixed_point_count() const { return fixed_points_.size(); }
+  std::size_t target_count() const { return targets_.size(); }
 
   // VBC (Eqs. 6–12) and SBC (Eq. 22), on the edges' end points. A viscous
   // boundary takes ρ, C_P and C_S from each edge's block, or from `medium`
@@ -94,6 +97,9 @@ class Boundaries {
   void fields(Archive& ar) {
     ar(fixed_points_, targets_, boundary_points_, boundaries_, columns_);
   }
+  // Read from a checkpoint: every block, point, boundary, column and node in
+  // range (core/load_check.hpp).
+  void check_loaded(const LoadCheck& check, const Blocks& blocks) const;
 
  private:
   using FixedPoint = MaterialPoint;
@@ -104,7 +110,8 @@ class Boundaries {
     Vec2 direction;              // zero direction: both components
     Vec2 target = Vec2::Zero();  // current target (vector)
     History history;
-    enum { Fixed, Displacement, Velocity, Acceleration } mode = Fixed;
+    enum Mode { Fixed, Displacement, Velocity, Acceleration } mode = Fixed;
+    friend constexpr Mode enum_last(Mode) { return Acceleration; }  // (core/archive.hpp)
     template <class Archive>
     void fields(Archive& ar) {
       ar(block, point, origin, direction, target, history, mode);

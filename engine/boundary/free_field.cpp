@@ -109,4 +109,14 @@ int FreeFieldColumn::node_at(double y) const {
   return best;
 }
 
+void FreeFieldColumn::check_loaded(const std::string& what) const {
+  const std::size_t n = y_.size();
+  bool sized = n >= 2 && k_shear_.size() == n - 1 && k_axial_.size() == n - 1 && segments_.size() == n - 1;
+  for (const State* s : {&state_, &trial_})
+    sized = sized && s->u.size() == n && s->vu.size() == n && s->w.size() == n && s->vw.size() == n;
+  if (!sized) throw Error(msg(what, " is damaged: a free-field column's lists do not match its ", n, " nodes"));
+  for (const Segment& g : segments_)
+    if (!(g.height > 0)) throw Error(msg(what, " is damaged: a free-field column has a segment of height ", g.height));
+}
+
 }  // namespace dda

@@ -51,6 +51,7 @@ class FreeFieldColumn {
   template <class Archive>
   void fields(Archive& ar) {
     ar(y_, k_shear_, k_axial_, segments_, zs_, zp_, vx_in_, vy_in_, state_, trial_);
+    if constexpr (Archive::reading) check_loaded(ar.what());
   }
   void commit();
 
@@ -74,6 +75,9 @@ class FreeFieldColumn {
       ar(u, vu, w, vw);
     }
   };
+  // Read from a checkpoint: a node more than segments, every list sized for
+  // them (throws dda::Error naming `what`).
+  void check_loaded(const std::string& what) const;
   // One direction: springs k per segment, base impedance z, input v_in.
   void advance_component(const std::vector<double>& k, double z, double v_in, const TimeScheme& scheme,
                          const std::vector<double>& u, const std::vector<double>& v, std::vector<double>& u1,

@@ -47,17 +47,21 @@ std::vector<std::pair<int, int>> find_candidate_pairs(const BlockPolygons& block
     lo = lo.cwiseMin(b.lo);
     hi = hi.cwiseMax(b.hi);
   }
-  // Keep the grid no larger than ~4 cells per block (blocks scattered far apart).
-  double cs = cell;
-  auto cells_along = [&](double size) {
-    return std::max(1L, static_cast<long>(std::ceil((hi - lo).maxCoeff() / size)));
-  };
-  while (static_cast<double>(cells_along(cs)) * cells_along(cs) > 4.0 * n + 1024) cs *= 2;
-  const long nx = std::max(1L, static_cast<long>(std::ceil((hi.x() - lo.x()) / cs)) + 1);
-  const long ny = std::max(1L, static_cast<long>(std::ceil((hi.y() - lo.y()) / cs)) + 1);
+  // Keep the grid no larger than ~4 cells per block (blocks scattered far
+  // apart). Cell counts are worked out in floating point and cast only once
+  // they are small: blocks 1e200 cells apart must not overflow a long. A model
+  // whose span overflows (a diverging one) gets no grid: every block is
+  // "large".
+  const double span = (hi - lo).maxCoeff();
+  const bool gridded = std::isfinite(span) && std::isfinite(cell) && cell > 0;
+  double cs = gridded ? cell : INFINITY;
+  auto cells_along = [&](double length) { return std::max(1.0, std::ceil(length / cs)); };
+  while (gridded && cells_along(span) * cells_along(span) > 4.0 * n + 1024) cs *= 2;
+  const long nx = gridded ? static_cast<long>(std::ceil((hi.x() - lo.x()) / cs)) + 1 : 1;
+  const long ny = gridded ? static_cast<long>(std::ceil((hi.y() - lo.y()) / cs)) + 1 : 1;
 
   std::vector<int> large, ordinary;
-  for (int b = 0; b < n; ++b) (extent[b] > cs ? large : ordinary).push_back(b);
+  for (int b = 0; b < n; ++b) (!gridded || extent[b] > cs ? large : ordinary).push_back(b);
 
   // Bucket ordinary blocks by the cell of their lower-left corner (counting sort).
   auto cell_of = [&](const Vec2& p) {

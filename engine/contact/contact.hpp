@@ -10,6 +10,7 @@
 namespace dda {
 
 enum class ContactState : std::uint8_t { Open, Sliding, Locked };
+constexpr ContactState enum_last(ContactState) { return ContactState::Locked; }  // (core/archive.hpp)
 
 // The contact law (the control contact_law; each law one file behind the
 // interface of contact_model.hpp): Holding (holding_law.hpp), the default,

@@ -1,10 +1,12 @@
 #include "contact/contact_detection.hpp"
 
 #include <algorithm>
+#include <cmath>
 
 #include "contact/broad_phase.hpp"
 #include "contact/mesh_contacts.hpp"
 #include "contact/narrow_phase.hpp"
+#include "core/load_check.hpp"
 #include "core/parallel.hpp"
 
 namespace dda {
@@ -112,6 +114,27 @@ bool ContactDetection::detect(const Blocks& blocks, double range, std::vector<Co
 void ContactDetection::add_rotations(const VecX& d) {
   parallel_for_each(
       rotation_since_detection_.size(), [&](std::size_t b) { rotation_since_detection_[b] += d[6 * b + 2]; }, 256);
+}
+
+void ContactDetection::check_loaded(const LoadCheck& check, const Blocks& blocks) const {
+  check.require(
+      std::isfinite(auto_range_) && auto_range_ >= 0 && std::isfinite(detected_range_) && detected_range_ >= 0,
+      "its contact range is ", auto_range_, " (searched with ", detected_range_, ")");
+  check.all_finite(detected_vertices_, "searched vertex");
+  // list_is_stale reads the rotations when the vertices match the blocks'.
+  if (detected_vertices_.size() == blocks.vertices.size())
+    check.size(rotation_since_detection_.size(), blocks.count(), "blocks", "the rotations since the search");
+  check.all_finite(rotation_since_detection_, "rotation since the search of block");
+  for (std::size_t i = 0; i < aligned_.size(); ++i) {
+    const AlignedEdges& e = aligned_[i];
+    check.index(e.a, blocks.count(), "blocks", "aligned edges ", i, "'s first block");
+    check.index(e.b, blocks.count(), "blocks", "aligned edges ", i, "'s second block");
+    check.index(e.edge_a, static_cast<std::size_t>(blocks.vertex_count(e.a)), "edges", "aligned edges ", i,
+                "'s first edge");
+    check.index(e.edge_b, static_cast<std::size_t>(blocks.vertex_count(e.b)), "edges", "aligned edges ", i,
+                "'s second edge");
+    check.finite(e.overlap, "aligned edges ", i, "'s overlap");
+  }
 }
 
 }  // namespace dda

@@ -65,6 +65,9 @@ class ContactDetection {
     ar(auto_range_, first_detection_, detected_vertices_, rotation_since_detection_, detected_range_, aligned_);
     if constexpr (Archive::reading) watch_.forget();  // (a cache: the next checks are exact)
   }
+  // Read from a checkpoint: the watched edges and the lists the staleness
+  // test reads sized for the blocks (core/load_check.hpp).
+  void check_loaded(const LoadCheck& check, const Blocks& blocks) const;
 
  private:
   bool list_is_stale(const Blocks& blocks, double range) const;

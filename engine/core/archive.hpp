@@ -10,10 +10,21 @@
 // are stored as their bytes (bit for bit: a restart continues exactly);
 // containers as their size, then their elements. ar.section("name") marks
 // where a part starts, so a damaged or mismatched file is named where it
-// goes wrong. Reading never trusts a size: a count that the bytes left
-// cannot hold is reported as damage before anything is allocated.
+// goes wrong.
+//
+// Reading treats the bytes as untrusted (anyone can edit a file and
+// recompute its checksums): a count that the bytes left cannot hold, at the
+// least bytes an element takes in the file, is damage reported before
+// anything is allocated, so what a file makes this process allocate stays
+// within a few times its size; a flag must be 0 or 1 and an enum one of its
+// values (each archived enum declares its last one, `enum_last`, beside it);
+// text from the file reaches messages only escaped (printable()). What the
+// values mean (indices into the model) each type checks after reading
+// (core/load_check.hpp).
 #include <Eigen/Core>
+#include <algorithm>
 #include <array>
+#include <concepts>
 #include <cstdint>
 #include <cstring>
 #include <optional>
@@ -26,6 +37,13 @@
 #include "core/error.hpp"
 
 namespace dda {
+
+// An archived enum E declares `constexpr E enum_last(E)` beside it (found by
+// argument-dependent lookup): its values run from 0 to that one.
+template <class E>
+concept ArchivedEnum = std::is_enum_v<E> && requires(E e) {
+  { enum_last(e) } -> std::same_as<E>;
+};
 
 template <class T, class Archive>
 concept HasFields = requires(T& t, Archive& ar) {
@@ -107,7 +125,7 @@ class ArchiveReader {
     get(found);
     if (found != name)
       throw Error(msg(what_, " is damaged or was written by another build of dda: expected its part '", name,
-                      "' after '", section_, "', found '", found.substr(0, 40), "'"));
+                      "' after '", section_, "', found '", printable(found, 40), "'"));
     section_ = name;
   }
   bool at_end() const { return pos_ == bytes_.size(); }
@@ -116,22 +134,51 @@ class ArchiveReader {
 
  private:
   [[noreturn]] void damaged() const { throw Error(msg(what_, " is damaged: its part '", section_, "' ends early")); }
+  template <class... Parts>
+  [[noreturn]] void bad_value(const Parts&... parts) const {
+    throw Error(msg(what_, " is damaged: its part '", section_, "' holds ", parts...));
+  }
   void raw(void* p, std::size_t n) {
     if (n > left()) damaged();
+    if (n == 0) return;  // (an empty vector's data() may be null: no memcpy from or to it)
     std::memcpy(p, bytes_.data() + pos_, n);
     pos_ += n;
   }
-  // A count of elements of at least `min_bytes` each, checked against the bytes left.
-  std::size_t count(std::size_t min_bytes) {
+  // A count of elements of type T, checked against the bytes left at the
+  // least bytes one takes in the file (an empty default element's).
+  template <class T>
+  std::size_t count() {
+    static const std::size_t min_bytes = [] {
+      if constexpr (std::is_arithmetic_v<T> || std::is_enum_v<T>) {
+        return sizeof(T);
+      } else {
+        ArchiveWriter w;
+        w(T{});
+        return std::max<std::size_t>(w.bytes().size(), 1);
+      }
+    }();
     std::uint64_t n = 0;
     get(n);
-    if (n > left() / (min_bytes ? min_bytes : 1)) damaged();
+    if (n > left() / min_bytes) damaged();
     return static_cast<std::size_t>(n);
   }
 
   template <class T>
   void get(T& v) {
-    if constexpr (std::is_arithmetic_v<T> || std::is_enum_v<T>) {
+    if constexpr (std::is_same_v<T, bool>) {
+      std::uint8_t b = 0;
+      raw(&b, 1);
+      if (b > 1) bad_value("a flag of value ", int(b), " (not 0 or 1)");
+      v = b != 0;
+    } else if constexpr (std::is_enum_v<T>) {
+      static_assert(ArchivedEnum<T>, "an archived enum declares enum_last beside it");
+      std::underlying_type_t<T> u{};
+      raw(&u, sizeof u);
+      using Wide = long long;
+      if (Wide(u) < 0 || Wide(u) > Wide(enum_last(T{})))
+        bad_value("an enum of value ", Wide(u), " (not one of its values)");
+      v = static_cast<T>(u);
+    } else if constexpr (std::is_arithmetic_v<T>) {
       raw(&v, sizeof v);
     } else if constexpr (HasFields<T, ArchiveReader>) {
       v.fields(*this);
@@ -144,18 +191,21 @@ class ArchiveReader {
     if constexpr (R == Eigen::Dynamic || C == Eigen::Dynamic) {
       std::uint64_t rows = 0, cols = 0;
       get(rows), get(cols);
-      if (cols != 0 && rows > left() / sizeof(Scalar) / cols) damaged();
+      if ((R != Eigen::Dynamic && rows != std::uint64_t(R)) || (C != Eigen::Dynamic && cols != std::uint64_t(C)))
+        bad_value("a matrix of ", rows, " × ", cols, " where it has ", R, " × ", C);
+      if (rows > left() || cols > left() || (cols != 0 && rows > left() / sizeof(Scalar) / cols)) damaged();
       m.resize(static_cast<Eigen::Index>(rows), static_cast<Eigen::Index>(cols));
     }
     raw(m.data(), sizeof(Scalar) * m.size());
   }
   template <class T, class A>
   void get_container(std::vector<T, A>& v) {
-    if constexpr (std::is_arithmetic_v<T> || std::is_enum_v<T>) {
-      v.resize(count(sizeof(T)));
+    if constexpr (std::is_arithmetic_v<T> && !std::is_same_v<T, bool>) {
+      v.resize(count<T>());
       raw(v.data(), sizeof(T) * v.size());
     } else {
-      v.resize(count(1));
+      v.clear();
+      v.resize(count<T>());
       for (T& e : v) get(e);
     }
   }
@@ -164,7 +214,7 @@ class ArchiveReader {
     for (T& e : a) get(e);
   }
   void get_container(std::string& s) {
-    s.resize(count(1));
+    s.resize(count<char>());
     raw(s.data(), s.size());
   }
   template <class T>

@@ -10,7 +10,9 @@
 //  * files that grow record by record (AppendFile: a CSV row, a log line):
 //    each record goes out in whole with write(2); a record that cannot be
 //    written in full is cut off again (ftruncate), so every record before
-//    the failure stays complete and the file ends on a record boundary.
+//    the failure stays complete and the file ends on a record boundary. A
+//    file made (or emptied) for writing whose first record fails is removed:
+//    no empty CSV is left on a full disk.
 //
 // For a new output (the checkpoint writer, say): build the bytes in memory
 // and call write_file_atomically, or open an AppendFile and append() one
@@ -19,6 +21,7 @@
 #include <filesystem>
 #include <string>
 #include <string_view>
+#include <vector>
 
 namespace dda {
 
@@ -26,9 +29,21 @@ namespace dda {
 // file, if any, is left as it was). Durable: the file is synced before the
 // rename and its folder after it, so the new file also survives a crash of
 // the machine (checkpoints ask for it; frames and tables need not wait).
+// PATH.part is created afresh (O_EXCL|O_NOFOLLOW: whatever was at that
+// name, a leftover or a symbolic link, is removed, never written through),
+// and a PATH that is not a regular file (a device, a folder, a pipe, or a
+// link to one) is refused: the rename would replace it.
 enum class Durability { Renamed, Synced };
 void write_file_atomically(const std::filesystem::path& path, std::string_view bytes,
                            Durability durability = Durability::Renamed);
+inline constexpr std::string_view kPartSuffix = ".part";
+
+// The *.part files a killed run left in `folder` and two levels of folders
+// below it (frames/, vtu/, a sweep's run folders), written before `before`
+// (files of a writer running now are younger), and symbolic links of that
+// name: removed; returns them. `dda run` calls it on its output folder.
+std::vector<std::filesystem::path> remove_stray_part_files(const std::filesystem::path& folder,
+                                                           std::filesystem::file_time_type before);
 
 class AppendFile {
  public:
@@ -53,7 +68,8 @@ class AppendFile {
  private:
   [[noreturn]] void fail(int err) const;
   int fd_ = -1;
-  long long size_ = 0;  // bytes of complete records
+  long long size_ = 0;       // bytes of complete records
+  bool empty_file_ = false;  // a regular file this object emptied or made, with no record yet
   std::filesystem::path path_;
 };
 

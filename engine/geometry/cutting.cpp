@@ -274,11 +274,9 @@ SegmentList collect_segments(const CutInput& in, const Prepared& p, const std::v
                         "): far more blocks than a model can run; check the spacings"));
       all_crossings += crossings;
     }
-  // The cut's memory grows with the crossings (about 0.6 to 0.85 kB each
-  // measured, docs/robustness.md): refuse before cutting what cannot fit.
-  constexpr double kCutBytesPerCrossing = 1000;
+  // The cut's memory grows with the crossings: refuse before cutting what cannot fit.
   check_memory_need(kCutBytesPerCrossing * (all_crossings + static_cast<double>(list.segments.size())),
-                    memory_headroom_bytes(), "cutting the domain",
+                    memory_headroom(), "cutting the domain",
                     msg("about ", std::round(all_crossings), " joint crossings"),
                     "use larger joint spacings or a smaller domain");
   return list;

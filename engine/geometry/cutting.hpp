@@ -23,6 +23,12 @@
 
 namespace dda::geometry {
 
+// The cut's memory per joint crossing or input segment (about 0.6 to 0.85
+// kB measured, docs/robustness.md): cut_blocks refuses before cutting what
+// cannot fit, and the callers that make many segments (a circle's) before
+// making them.
+inline constexpr double kCutBytesPerCrossing = 1000;
+
 // A family of parallel joints.
 struct JointSet {
   double dip_deg = 0;          // direction of the joints, degrees from +x, counter-clockwise

@@ -24,6 +24,7 @@ enum class EdgeKind : std::uint8_t {
   Hole,    // the boundary of hole `hole`
   Free,    // an edge of a block added explicitly
 };
+constexpr EdgeKind enum_last(EdgeKind) { return EdgeKind::Free; }  // (core/archive.hpp)
 
 struct EdgeTag {
   EdgeKind kind = EdgeKind::Free;

@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "core/error.hpp"
+#include "core/memory.hpp"
 
 namespace dda {
 
@@ -34,6 +35,25 @@ double header_spacing(const std::string& line) {
   double dt = 0;
   rest >> dt;
   return rest ? dt : 0;
+}
+
+// The count of a header line "%  1845  INSTRUMENT AND BASELINE CORRECTED
+// DATA" (the corrected values that follow), or -1.
+long header_count(const std::string& line) {
+  std::string upper = line;
+  std::transform(upper.begin(), upper.end(), upper.begin(), [](unsigned char c) { return std::toupper(c); });
+  const auto at = upper.find("CORRECTED DATA");
+  if (at == std::string::npos) return -1;
+  std::istringstream words(line.substr(1, at));
+  long n = -1;
+  words >> n;
+  return words && n >= 0 ? n : -1;
+}
+
+double smallest_spacing(const std::vector<std::pair<double, double>>& samples) {
+  double dt = INFINITY;
+  for (std::size_t i = 1; i < samples.size(); ++i) dt = std::min(dt, samples[i].first - samples[i - 1].first);
+  return dt;
 }
 
 }  // namespace
@@ -73,8 +93,18 @@ GroundMotion GroundMotion::from_samples(const std::vector<std::pair<double, doub
   if (samples.size() < 2) throw Error(msg(source, ": needs at least two (time, acceleration) samples"));
   const History h(samples, source);
   const double t0 = samples.front().first, t1 = samples.back().first;
-  if (!(dt > 0)) throw Error(msg(source, ": the time step must be positive, got ", dt));
-  const auto n = static_cast<std::size_t>(std::floor((t1 - t0) / dt * (1 + 1e-12))) + 1;
+  if (!(dt > 0) || !std::isfinite(dt)) throw Error(msg(source, ": the time step must be positive, got ", dt));
+  // The count in floating point first: a tiny dt or a huge span must not
+  // wrap it (or ask for more memory than there is) before anything is allocated.
+  const double count = std::floor((t1 - t0) / dt * (1 + 1e-12)) + 1;
+  const double bytes = count * kBytesPerSample;
+  if (!std::isfinite(count) || count > 1e15)
+    throw Error(msg(source, ": resampling ", t1 - t0, " s at dt = ", dt, " s gives ", count,
+                    " samples: give a larger dt (the samples' smallest spacing is ", smallest_spacing(samples), " s)"));
+  check_memory_need(bytes, memory_headroom(), msg(source, ": resampling to dt = ", dt, " s"),
+                    msg(count, " samples over ", t1 - t0, " s, about ", kBytesPerSample, " bytes each"),
+                    msg("give a larger dt (the samples' smallest spacing is ", smallest_spacing(samples), " s)"));
+  const auto n = static_cast<std::size_t>(count);
   std::vector<double> a(n);
   for (std::size_t i = 0; i < n; ++i) a[i] = h.value(t0 + static_cast<double>(i) * dt);
   return GroundMotion(dt, std::move(a), std::move(source));
@@ -82,8 +112,14 @@ GroundMotion GroundMotion::from_samples(const std::vector<std::pair<double, doub
 
 GroundMotion GroundMotion::read_accelerogram(const std::string& path, AccelerationUnit unit, double dt) {
   std::ifstream in = open_record(path, "accelerogram");
+  return parse_accelerogram(in, path, unit, dt);
+}
+
+GroundMotion GroundMotion::parse_accelerogram(std::istream& in, const std::string& path, AccelerationUnit unit,
+                                              double dt) {
   std::vector<double> a;
   double header_dt = 0;
+  long announced = -1;  // the header's count of values, if it gives one
   std::string line;
   int line_number = 0;
   const double factor = metres_per_second2(unit);
@@ -91,6 +127,7 @@ GroundMotion GroundMotion::read_accelerogram(const std::string& path, Accelerati
     ++line_number;
     if (!line.empty() && line[0] == '%') {
       if (header_dt == 0) header_dt = header_spacing(line);
+      if (announced < 0) announced = header_count(line);
       continue;
     }
     std::istringstream values(line);
@@ -99,13 +136,16 @@ GroundMotion GroundMotion::read_accelerogram(const std::string& path, Accelerati
       char* end = nullptr;
       const double v = std::strtod(word.c_str(), &end);
       if (end == word.c_str() || *end != '\0')
-        throw Error(msg("accelerogram '", path, "' line ", line_number, ": '", word,
+        throw Error(msg("accelerogram '", path, "' line ", line_number, ": '", printable(word, 40),
                         "' is not a number (header lines must start with %)"));
       a.push_back(v * factor);
     }
   }
+  if (announced >= 0 && static_cast<long>(a.size()) < announced)
+    throw Error(msg("accelerogram '", path, "' is truncated: its header announces ", announced, " values, it holds ",
+                    a.size(), " (was it copied or downloaded completely?)"));
   const double spacing = header_dt > 0 ? header_dt : dt;
-  if (!(spacing > 0))
+  if (!(spacing > 0) || !std::isfinite(spacing))
     throw Error(msg("accelerogram '", path, "': the header gives no spacing (\"INTERVALS OF ... SEC\"): give dt"));
   GroundMotion g(spacing, std::move(a), path);
   return dt > 0 && dt != spacing ? g.resampled(dt) : g;
@@ -113,6 +153,10 @@ GroundMotion GroundMotion::read_accelerogram(const std::string& path, Accelerati
 
 GroundMotion GroundMotion::read_csv(const std::string& path, AccelerationUnit unit, double dt) {
   std::ifstream in = open_record(path, "accelerogram CSV");
+  return parse_csv(in, path, unit, dt);
+}
+
+GroundMotion GroundMotion::parse_csv(std::istream& in, const std::string& path, AccelerationUnit unit, double dt) {
   std::vector<std::pair<double, double>> samples;
   std::string line;
   int line_number = 0;
@@ -133,7 +177,10 @@ GroundMotion GroundMotion::read_csv(const std::string& path, AccelerationUnit un
     if (!numbers && samples.empty() && line_number == 1) continue;  // a heading
     if (!numbers || !extra.empty())
       throw Error(msg("accelerogram CSV '", path, "' line ", line_number,
-                      ": expected two numbers, time (s) and acceleration, got '", line, "'"));
+                      ": expected two numbers, time (s) and acceleration, got '", printable(line), "'"));
+    if (!std::isfinite(t) || !std::isfinite(v))
+      throw Error(
+          msg("accelerogram CSV '", path, "' line ", line_number, ": the time or the acceleration is not finite"));
     if (!samples.empty() && !(t > samples.back().first))
       throw Error(msg("accelerogram CSV '", path, "' line ", line_number, ": times must increase (t = ", t,
                       " after t = ", samples.back().first, ")"));
@@ -141,11 +188,7 @@ GroundMotion GroundMotion::read_csv(const std::string& path, AccelerationUnit un
   }
   if (samples.size() < 2)
     throw Error(msg("accelerogram CSV '", path, "': needs at least two (time, acceleration) rows"));
-  if (dt <= 0) {
-    dt = INFINITY;
-    for (std::size_t i = 1; i < samples.size(); ++i) dt = std::min(dt, samples[i].first - samples[i - 1].first);
-  }
-  return from_samples(samples, dt, path);
+  return from_samples(samples, dt > 0 ? dt : smallest_spacing(samples), path);
 }
 
 GroundMotion GroundMotion::resampled(double dt) const {

@@ -18,6 +18,7 @@
 // quadratic drift of velocity: a constant and a linearly growing offset of
 // the acceleration, the signature of a shifted zero line and of tilt) is the
 // default; order 0 leaves the record as read.
+#include <istream>
 #include <string>
 #include <utility>
 #include <vector>
@@ -45,6 +46,8 @@ class GroundMotion {
   // "...INTERVALS OF .020 SEC"), then values in free format (8 a line in the
   // file of data/), in `unit` (the USGS/CDMG files are in cm/s²). dt = 0
   // takes the spacing from the header; the header's spacing is required then.
+  // A header line "%  1845  INSTRUMENT AND BASELINE CORRECTED DATA" announces
+  // the values: a file that holds fewer is truncated and refused.
   static GroundMotion read_accelerogram(const std::string& path,
                                         AccelerationUnit unit = AccelerationUnit::CentimetrePerSecond2, double dt = 0);
   // Two columns, time (s) and acceleration (in `unit`), separated by a comma,
@@ -52,6 +55,16 @@ class GroundMotion {
   // that is not numbers (a heading) are skipped. Times must increase; uneven
   // spacing is resampled to dt (dt = 0: the smallest spacing in the file).
   static GroundMotion read_csv(const std::string& path, AccelerationUnit unit, double dt = 0);
+  // The same from the bytes of a file (`path` names it in messages).
+  static GroundMotion parse_accelerogram(std::istream& in, const std::string& path,
+                                         AccelerationUnit unit = AccelerationUnit::CentimetrePerSecond2, double dt = 0);
+  static GroundMotion parse_csv(std::istream& in, const std::string& path, AccelerationUnit unit, double dt = 0);
+
+  // Memory of a sample, measured over dda.ground_motion (the resampling's
+  // and the corrections' copies, and the three tables of {t, value} pairs it
+  // returns to Lua): the estimate a resampling is refused on before it
+  // allocates (docs/robustness.md).
+  static constexpr double kBytesPerSample = 460;
 
   // The same motion at spacing dt (linear interpolation of the
   // acceleration; the duration is kept, the last sample at or before it).

@@ -9,20 +9,25 @@ namespace dda {
 
 History::History(std::vector<std::pair<double, double>> points, const std::string& what) {
   if (points.empty()) throw Error(msg(what, ": needs at least one (t, value) point"));
-  for (std::size_t i = 0; i < points.size(); ++i) {
-    const auto [t, v] = points[i];
+  for (const auto& [t, v] : points) t_.push_back(t), v_.push_back(v);
+  check_and_integrate(what);
+}
+
+void History::check_and_integrate(const std::string& what) {
+  if (t_.size() != v_.size())
+    throw Error(msg(what, " is damaged: a history has ", t_.size(), " times and ", v_.size(), " values"));
+  for (std::size_t i = 0; i < t_.size(); ++i) {
+    const double t = t_[i], v = v_[i];
     if (!std::isfinite(t) || !std::isfinite(v))
       throw Error(msg(what, ": point ", i + 1, " is not finite (t = ", t, ", value = ", v, ")"));
-    if (i > 0 && !(t > points[i - 1].first))
-      throw Error(
-          msg(what, ": times must increase, but point ", i + 1, " has t = ", t, " after t = ", points[i - 1].first));
-    t_.push_back(t);
-    v_.push_back(v);
+    if (i > 0 && !(t > t_[i - 1]))
+      throw Error(msg(what, ": times must increase, but point ", i + 1, " has t = ", t, " after t = ", t_[i - 1]));
   }
   area_.resize(t_.size());
+  area2_.resize(t_.size());
+  if (t_.empty()) return;
   area_[0] = v_[0] * t_[0];  // constant first value from t = 0
   for (std::size_t i = 1; i < t_.size(); ++i) area_[i] = area_[i - 1] + 0.5 * (v_[i] + v_[i - 1]) * (t_[i] - t_[i - 1]);
-  area2_.resize(t_.size());
   area2_[0] = 0.5 * v_[0] * t_[0] * t_[0];
   for (std::size_t i = 1; i < t_.size(); ++i) {
     const double h = t_[i] - t_[i - 1];

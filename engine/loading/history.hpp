@@ -24,12 +24,18 @@ class History {
   // acceleration to its displacement, from rest at t = 0).
   double double_integral(double t) const;
   bool empty() const { return t_.empty(); }
+  // Checkpoints (core/archive.hpp): the points and their integral; read,
+  // the points are checked as the constructor checks them and both
+  // integrals made again from them (the same bits).
   template <class Archive>
   void fields(Archive& ar) {
     ar(t_, v_, area_);
+    if constexpr (Archive::reading) check_and_integrate(ar.what());
   }
 
  private:
+  // The constructor's checks (throwing dda::Error naming `what`) and the integrals.
+  void check_and_integrate(const std::string& what);
   std::vector<double> t_, v_, area_;  // area_[i] = ∫₀^{t_i}
   std::vector<double> area2_;         // area2_[i] = ∫₀^{t_i} ∫₀ˢ
 };

@@ -4,6 +4,7 @@
 
 #include "block/displacement.hpp"
 #include "core/error.hpp"
+#include "core/load_check.hpp"
 
 namespace dda {
 
@@ -108,6 +109,21 @@ Loads::Work Loads::step_work(const Blocks& blocks, const VecX& d) const {
     }
   }
   return w;
+}
+
+void Loads::check_loaded(const LoadCheck& check, const Blocks& blocks) const {
+  for (std::size_t i = 0; i < point_loads_.size(); ++i) {
+    const PointLoad& l = point_loads_[i];
+    check.index(l.block, blocks.count(), "blocks", "point load ", i, "'s block");
+    check.finite(l.point, "point load ", i, "'s point");
+  }
+  for (std::size_t i = 0; i < point_load_histories_.size(); ++i)
+    check.index(point_load_histories_[i].load, point_loads_.size(), "point loads", "force history ", i, "'s load");
+  for (std::size_t i = 0; i < pressure_loads_.size(); ++i) try {
+      check_edges(blocks, pressure_loads_[i].edges, msg("pressure ", i));
+    } catch (const Error& e) {
+      check.fail(e.what());
+    }
 }
 
 }  // namespace dda

@@ -25,6 +25,8 @@ class Loads {
   void set_pressure_history(int id, History pressure);
   // No point load and no pressure.
   bool empty() const { return point_loads_.empty() && pressure_loads_.empty(); }
+  std::size_t point_load_count() const { return point_loads_.size(); }
+  std::size_t pressure_count() const { return pressure_loads_.size(); }
 
   // The step: forces at t_end into the right-hand side, serially in a fixed
   // order (few next to the blocks).
@@ -45,6 +47,8 @@ class Loads {
   void fields(Archive& ar) {
     ar(point_loads_, point_load_histories_, pressure_loads_);
   }
+  // Read from a checkpoint: every block, edge and load in range (core/load_check.hpp).
+  void check_loaded(const LoadCheck& check, const Blocks& blocks) const;
 
  private:
   struct PointLoad {

@@ -1,5 +1,7 @@
 #include "solver/block_sparse_matrix.hpp"
 
+#include "core/load_check.hpp"
+
 #include <algorithm>
 
 #include "core/error.hpp"
@@ -63,6 +65,24 @@ Eigen::SparseMatrix<double> BlockSparseMatrix::to_sparse() const {
   Eigen::SparseMatrix<double> a(6 * n_, 6 * n_);
   a.setFromTriplets(t.begin(), t.end());
   return a;
+}
+
+void BlockSparseMatrix::check_loaded(const LoadCheck& check, const char* name) const {
+  check.require(n_ >= 0 && row_start_.size() == static_cast<std::size_t>(n_) + 1 && row_start_[0] == 0 &&
+                    row_start_.back() == static_cast<long long>(cols_.size()) &&
+                    diag_.size() == row_start_.size() - 1 && values_.size() == cols_.size(),
+                name, "'s lists do not match its ", n_, " rows");
+  for (int i = 0; i < n_; ++i) {
+    check.require(row_start_[i] <= row_start_[i + 1], name, "'s row ", i, " ends before it starts");
+    for (int k = row_start_[i]; k < row_start_[i + 1]; ++k)
+      check.require(cols_[k] >= 0 && cols_[k] < n_ && (k == row_start_[i] || cols_[k - 1] < cols_[k]), name, "'s row ",
+                    i, " has columns out of order or range");
+  }
+  for (int i = 0; i < n_; ++i) {
+    check.require(diag_[i] == find(i, i) && diag_[i] >= 0, name, "'s row ", i, " has no diagonal block");
+    for (int k = row_start_[i]; k < row_start_[i + 1]; ++k)
+      check.require(find(cols_[k], i) >= 0, name, "'s pattern is not symmetric at row ", i);
+  }
 }
 
 }  // namespace dda

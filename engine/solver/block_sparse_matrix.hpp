@@ -14,6 +14,8 @@
 
 namespace dda {
 
+class LoadCheck;
+
 class BlockSparseMatrix final : public LinearOperator {
  public:
   // n block rows; `pairs` are the off-diagonal couplings (i < j), sorted and unique.
@@ -55,6 +57,11 @@ class BlockSparseMatrix final : public LinearOperator {
   void fields(Archive& ar) {
     ar(n_, row_start_, cols_, diag_, values_);
   }
+  // Read from a checkpoint: a pattern set_structure could have made (rows
+  // from 0 to the columns' end, columns ascending and in range, the pattern
+  // symmetric, every diagonal found), a value per stored block
+  // (core/load_check.hpp; `name` names the matrix).
+  void check_loaded(const LoadCheck& check, const char* name) const;
 
  private:
   int n_ = 0;

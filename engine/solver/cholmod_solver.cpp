@@ -4,6 +4,7 @@
 
 #include "core/archive.hpp"
 #include "core/error.hpp"
+#include "core/load_check.hpp"
 #include "solver/block_sparse_matrix.hpp"
 
 namespace dda {
@@ -27,6 +28,7 @@ void CholmodSolver::load_state(ArchiveReader& ar) {
   if (!ready) return;
   BlockSparseMatrix a;
   ar(factor_.ordering, a);
+  a.check_loaded(LoadCheck(ar.what()), "the CHOLMOD factor's matrix");
   if (!factor_.factorise(a))
     throw Error(msg(ar.what(), " is damaged: the CHOLMOD factor it holds cannot be made again"));
 }

@@ -5,6 +5,7 @@
 
 #include "core/archive.hpp"
 #include "core/error.hpp"
+#include "core/load_check.hpp"
 #include "core/parallel.hpp"
 
 namespace dda {
@@ -53,7 +54,40 @@ const BlockSparseMatrix& Multigrid::op(std::size_t level) const { return level =
 
 void Multigrid::save_state(ArchiveWriter& ar) const { ar(levels_, pattern_rows_, pattern_cols_, aggregations_); }
 
-void Multigrid::load_state(ArchiveReader& ar) { ar(levels_, pattern_rows_, pattern_cols_, aggregations_); }
+// Of the hierarchy read, only the decisions are taken as they are (each
+// level's aggregates, smoothing and λmax estimate, checked against the
+// sizes they imply); the transfers' patterns, which follow from those and
+// the fine pattern, are made again at the next setup (the same bits), so no
+// index from the file reaches them.
+void Multigrid::load_state(ArchiveReader& ar) {
+  ar(levels_, pattern_rows_, pattern_cols_, aggregations_);
+  const LoadCheck check(ar.what());
+  check.require(aggregations_ >= 0 && aggregations_ < (1 << 30), "its multigrid's rebuild count is ", aggregations_);
+  patterns_restored_ = false;
+  if (levels_.empty()) return;
+  check.require(!pattern_rows_.empty(), "its multigrid has levels but no fine pattern");
+  std::size_t n = pattern_rows_.size() - 1;  // blocks of the level
+  for (std::size_t l = 0; l < levels_.size(); ++l) {
+    const Level& lv = levels_[l];
+    check.require(std::isfinite(lv.lambda) && lv.lambda > 0 && std::isfinite(lv.weight), "its multigrid level ", l,
+                  "'s smoother has λmax ", lv.lambda, " and weight ", lv.weight);
+    if (l + 1 == levels_.size()) {
+      check.require(lv.aggregate.empty(), "its coarsest multigrid level has aggregates");
+      break;
+    }
+    check.size(lv.aggregate.size(), n, "blocks", "multigrid level ", l, "'s aggregates");
+    std::vector<char> used(n, 0);
+    for (const int a : lv.aggregate) {
+      check.index(a, n, "blocks", "an aggregate of multigrid level ", l);
+      used[a] = 1;
+    }
+    const std::size_t nc = n == 0 ? 0 : 1 + *std::max_element(lv.aggregate.begin(), lv.aggregate.end());
+    check.require(std::all_of(used.begin(), used.begin() + nc, [](char u) { return u != 0; }) && nc > 0,
+                  "multigrid level ", l, " has an empty aggregate");
+    n = nc;
+  }
+  patterns_restored_ = true;
+}
 
 void Multigrid::setup(const LinearOperator& op) {
   // The Galerkin products need the fine matrix's entries.
@@ -67,6 +101,7 @@ void Multigrid::setup(const LinearOperator& op) {
                             std::equal(rows.begin(), rows.end(), pattern_rows_.begin(), pattern_rows_.end()) &&
                             std::equal(cols.begin(), cols.end(), pattern_cols_.begin(), pattern_cols_.end());
   if (same_pattern) {
+    if (patterns_restored_) remake_transfer_patterns();
     for (std::size_t l = 0; l < levels_.size(); ++l) {
       update_smoother(l, false);
       if (l + 1 == levels_.size()) break;
@@ -78,8 +113,17 @@ void Multigrid::setup(const LinearOperator& op) {
   }
   pattern_rows_.assign(rows.begin(), rows.end());
   pattern_cols_.assign(cols.begin(), cols.end());
+  patterns_restored_ = false;
   build_hierarchy();
   ++aggregations_;
+}
+
+// A hierarchy read from a checkpoint: the transfer patterns of its
+// aggregates on the fine pattern, and the work vectors.
+void Multigrid::remake_transfer_patterns() {
+  for (std::size_t l = 0; l + 1 < levels_.size(); ++l) build_transfer_pattern(l);
+  size_work_vectors();
+  patterns_restored_ = false;
 }
 
 // ---- Hierarchy ----------------------------------------------------------------
@@ -114,6 +158,10 @@ void Multigrid::build_hierarchy() {
   }
   update_smoother(levels_.size() - 1, true);
   factor_coarsest();
+  size_work_vectors();
+}
+
+void Multigrid::size_work_vectors() {
   for (std::size_t l = 0; l < levels_.size(); ++l) {
     const int n = op(l).rows();
     levels_[l].x.resize(6 * n);

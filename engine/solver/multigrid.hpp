@@ -136,6 +136,8 @@ class Multigrid final : public Preconditioner {
 
   const BlockSparseMatrix& op(std::size_t level) const;
   void build_hierarchy();
+  void remake_transfer_patterns();
+  void size_work_vectors();
   int aggregate(std::size_t level);
   void update_transfer(std::size_t level);
   void build_transfer_pattern(std::size_t level);
@@ -153,6 +155,7 @@ class Multigrid final : public Preconditioner {
   Eigen::LLT<Eigen::MatrixXd> coarse_llt_;
   bool dense_coarse_ = false;
   int aggregations_ = 0;
+  bool patterns_restored_ = false;  // levels read from a checkpoint: patterns to make at the next setup
 };
 
 }  // namespace dda

@@ -1,6 +1,10 @@
 #include "solver/solver_choice.hpp"
 
+#include <climits>
+#include <cmath>
+
 #include "core/archive.hpp"
+#include "core/load_check.hpp"
 
 namespace dda {
 
@@ -26,6 +30,14 @@ void AutoSolver::load_state(ArchiveReader& ar) {
     direct_ = std::make_unique<CholmodSolver>();
     direct_->load_state(ar);
   }
+  // The counts feed sums and a doubling wait; on the factor, the factor is there.
+  const LoadCheck check(ar.what());
+  constexpr long long kMaxCount = 1LL << 40;
+  const long long counts[] = {solves_,       factorisations_, iterations_, pcg_solves_,    pcg_iterations_,
+                              direct_steps_, retry_in_,       retry_wait_, long_pcg_steps_};
+  for (const long long n : counts) check.require(n >= 0 && n < kMaxCount, "its solver counts hold ", n);
+  check.require(std::isfinite(pcg_work_) && std::isfinite(direct_work_), "its solver's work figures are not finite");
+  check.require(!on_direct_ || direct_, "its solver is on a CHOLMOD factor it does not hold");
 }
 
 StepSolveInfo AutoSolver::choose_backend(const SolverSettings& settings, const StepSolveInfo& info) {
@@ -90,7 +102,7 @@ void AutoSolver::choose(const StepSolveInfo& info) {
     if (direct_steps_ >= kTrialSteps && direct_work_ > pcg_work_) {
       on_direct_ = false;
       retry_in_ = retry_wait_;
-      retry_wait_ *= 2;
+      retry_wait_ = retry_wait_ < INT_MAX / 2 ? 2 * retry_wait_ : INT_MAX;
     }
     return;
   }

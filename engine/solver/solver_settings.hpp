@@ -10,6 +10,7 @@ namespace dda {
 // preconditioner pays off where contacts and elasticity dominate (quasi-static
 // walls, slopes). Auto picks by the system at hand (preconditioner_choice.hpp).
 enum class Preconditioning { Auto, BlockJacobi, Multigrid };
+constexpr Preconditioning enum_last(Preconditioning) { return Preconditioning::Multigrid; }  // (core/archive.hpp)
 
 // Knobs of the preconditioned conjugate-gradient solver (pcg.hpp) alone.
 struct PcgSettings {
@@ -30,6 +31,7 @@ struct PcgSettings {
 
 // The sparse direct factorisation (cholmod_solver.hpp).
 enum class FillOrdering { Metis, Amd };  // of the block graph, before the factorisation
+constexpr FillOrdering enum_last(FillOrdering) { return FillOrdering::Amd; }  // (core/archive.hpp)
 struct CholmodSettings {
   FillOrdering ordering = FillOrdering::Metis;
   // CG iterations a solve may take with the factor of an earlier system
@@ -48,6 +50,9 @@ enum class SolverKind { Auto, Pcg, Cholmod };
 // factorised (a Cholesky factor per meshed block, kept while it serves), or
 // the nodes' 2×2 diagonal blocks.
 enum class MeshPreconditioning { BlockFactor, NodeJacobi };
+constexpr MeshPreconditioning enum_last(MeshPreconditioning) {
+  return MeshPreconditioning::NodeJacobi;
+}  // (core/archive.hpp)
 
 struct SolverSettings {
   SolverKind kind = SolverKind::Auto;

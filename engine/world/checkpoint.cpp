@@ -25,7 +25,7 @@ namespace {
 
 constexpr std::array<char, 8> kMagic{'D', 'D', 'A', '-', 'C', 'K', 'P', 'T'};
 constexpr std::uint32_t kByteOrderMark = 0x01020304;
-constexpr std::size_t kHeaderBytes = 32;
+constexpr std::size_t kHeaderBytes = kCheckpointHeaderBytes;
 
 std::uint32_t crc(std::string_view bytes) {
   return static_cast<std::uint32_t>(
@@ -51,12 +51,16 @@ std::string checkpoint_bytes(const World& world, std::string_view extra) {
   ar.section("extra");
   ar(std::string(extra));
   ar.section("end");
+  return checkpoint_file(ar.bytes());
+}
+
+std::string checkpoint_file(std::string_view payload) {
   Header h;
-  h.payload_bytes = ar.bytes().size();
-  h.payload_crc = crc(ar.bytes());
+  h.payload_bytes = payload.size();
+  h.payload_crc = crc(payload);
   h.header_crc = crc(std::string_view(reinterpret_cast<const char*>(&h), kHeaderBytes - 4));
   std::string out(reinterpret_cast<const char*>(&h), kHeaderBytes);
-  out += ar.bytes();
+  out += payload;
   return out;
 }
 

@@ -45,6 +45,13 @@ inline constexpr std::uint32_t kCheckpointFormat = 9;
 // layer's loads and monitors), as a checkpoint file's bytes.
 std::string checkpoint_bytes(const World& world, std::string_view extra = {});
 
+// A checkpoint file's parts: the header (with the payload's size and both
+// checksums) and the payload. checkpoint_file() seals a payload into a file
+// as checkpoint_bytes does: for the tests and the fuzz target, which craft
+// payloads the checksums cannot catch (anyone can recompute them).
+inline constexpr std::size_t kCheckpointHeaderBytes = 32;
+std::string checkpoint_file(std::string_view payload);
+
 struct Checkpoint {
   World world;
   std::string extra;

@@ -21,7 +21,7 @@ constexpr ControlRange kAtLeastOne{1, kInf, false, false, "must be at least 1"};
 constexpr ControlRange kZeroOffOrPositive{0, kInf, false, false, "must be zero (off) or positive"};
 constexpr ControlRange kZeroAutomaticOrPositive{0, kInf, false, false, "must be zero (automatic) or positive"};
 constexpr ControlRange kOffOrUnitInterval{-1, 1, false, false, "must be -1 (off) or lie in [0, 1]", true};
-constexpr ControlRange kZeroEveryCoreOrPositive{0, kInf, false, false, "must be zero (every core) or positive"};
+constexpr ControlRange kThreads{0, kMaxThreads, false, false, "must be zero (every core) or 1 to 4096"};
 
 constexpr const char* kPlaneNames[] = {"stress", "strain"};                            // PlaneMode order
 constexpr const char* kIntegratorNames[] = {"shi", "newmark", "generalized_alpha"};    // Integrator order
@@ -260,7 +260,7 @@ const ControlSpec kControls[] = {
         "cg_max_iterations", [](Controls& c) -> int& { return c.cg_max_iterations; }, kZeroAutomaticOrPositive,
         "0 = automatic"),
     integer(
-        "threads", [](Controls& c) -> int& { return c.threads; }, kZeroEveryCoreOrPositive,
+        "threads", [](Controls& c) -> int& { return c.threads; }, kThreads,
         "worker threads (0 = every core); `--threads` overrides it"),
 };
 
@@ -270,6 +270,7 @@ Controls& writable(const Controls& c) { return const_cast<Controls&>(c); }
 // A default as the docs write it: %g, and below 1e-3 the shortest exponent
 // form that reads back the same, without padding (1e-9, not 1e-09).
 std::string number_text(double v) {
+  if (std::isnan(v)) return "nan";  // (printf writes "-nan" for most NaNs)
   char buf[40];
   std::snprintf(buf, sizeof buf, "%g", v);
   if (v != 0 && std::abs(v) < 1e-3)

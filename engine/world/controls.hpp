@@ -30,6 +30,11 @@ struct Controls;
 void archive_controls(ArchiveWriter& ar, Controls& c);
 void archive_controls(ArchiveReader& ar, Controls& c);
 
+// The most worker threads a model (or --threads) may ask for: more than any
+// machine has, and few enough that the thread pool can make them.
+inline constexpr int kMaxThreads = 4096;
+static_assert(kMaxThreads == 4096, "the threads control's rule says 4096");
+
 struct Controls {
   PlaneMode plane = PlaneMode::Stress;
   double g0 = 0;                            // normal contact spring (N/m per unit thickness); 0 → 50 × largest E
@@ -101,6 +106,7 @@ struct Controls {
 };
 
 enum class ControlType { Number, Integer, Flag, Choice, Vector };
+constexpr ControlType enum_last(ControlType) { return ControlType::Vector; }  // (core/archive.hpp)
 
 // The values a number or integer control admits, and the words that say so
 // ("must be zero or positive"): the same check and message from Lua and C++.

@@ -6,6 +6,8 @@
 #include <chrono>
 #include <string>
 
+#include "core/error.hpp"
+
 namespace dda {
 
 enum class Stage {
@@ -67,6 +69,7 @@ struct StepStats {
   void fields(Archive& ar) {
     ar(dt, open_close_iterations, cg_iterations, patch_iterations, step_cuts, cut_reason, contacts, closed_contacts,
        contacts_searched, max_displacement_ratio);
+    if constexpr (Archive::reading) cut_reason = printable(cut_reason);  // (it reaches messages)
   }
 };
 

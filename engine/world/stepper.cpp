@@ -129,9 +129,11 @@ void Stepper::check_new_model(WorldState& w) {
   constexpr double kStepBytesPerBlock = 2500, kStepBytesPerVertex = 500;
   const double vertices = static_cast<double>(blocks.vertices.size());
   check_memory_need(kStepBytesPerBlock * static_cast<double>(blocks.count()) + kStepBytesPerVertex * vertices,
-                    memory_headroom_bytes(), "the model's first step",
+                    memory_headroom(), "the model's first step",
                     msg(blocks.count(), " blocks with ", vertices, " vertices"),
-                    "use fewer blocks (larger joint spacings or a smaller domain)");
+                    blocks.has_meshes() ? "use fewer blocks and elements (larger joint spacings, a larger mesh_size, "
+                                          "or a smaller domain)"
+                                        : "use fewer blocks (larger joint spacings or a smaller domain)");
   w.half_height = w.measured_half_height();
   if (!(w.half_height > 0)) throw Error("the model has no height (all vertices on one horizontal line)");
   detection_.start_automatic_range(blocks);

@@ -44,6 +44,7 @@ class Stepper {
   template <class Archive>
   void fields(Archive& ar, const WorldState& w) {
     ar.section("contact detection"), ar(detection_);
+    if constexpr (Archive::reading) detection_.check_loaded(LoadCheck(ar.what()), w.blocks);
     ar.section("linear solver");
     bool has_solver = solver_ != nullptr;
     ar(has_solver);

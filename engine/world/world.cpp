@@ -7,6 +7,7 @@
 #include "block/displacement.hpp"
 #include "block/mesh.hpp"
 #include "core/error.hpp"
+#include "core/memory.hpp"
 #include "geometry/polygon.hpp"
 #include "world/stepper.hpp"
 
@@ -94,6 +95,11 @@ BlockId World::add_block(std::vector<Vec2> vertices, int rock_material, std::vec
 BlockId World::add_meshed_block(const std::vector<Vec2>& outline, int rock_material,
                                 const std::vector<int>& edge_joints, const std::vector<EdgeTag>& edge_tags,
                                 double mesh_size, const std::string& what) {
+  // Memory stated before the mesh is made (a tiny mesh_size makes millions of elements).
+  const double elements = estimated_mesh_elements(outline, mesh_size);
+  check_memory_need(kMeshBytesPerElement * elements, memory_headroom(), msg("meshing ", what),
+                    msg("about ", std::round(elements), " elements at mesh_size ", mesh_size, " m"),
+                    "give a larger mesh_size (the rock's mesh_size, or the model's mesh_size control)");
   const TriangleMesh mesh = mesh_polygon(outline, mesh_size, what);
   Blocks& bl = s_.blocks;
   const int first_node = mesh_node_count(bl);

@@ -90,6 +90,10 @@ class World {
   void set_target_acceleration_history(int id, History acceleration);
   Vec2 target_point_displacement(int id) const;  // the material point's displacement so far
   Vec2 target_value(int id) const;               // the last target applied (vector)
+  std::size_t point_load_count() const { return s_.loads.point_load_count(); }
+  std::size_t pressure_count() const { return s_.loads.pressure_count(); }
+  std::size_t target_count() const { return s_.boundaries.target_count(); }
+  std::size_t fixed_point_count() const { return s_.boundaries.fixed_point_count(); }
 
   // Fixed boundary: fixed points at both ends of each edge.
   void fix_edges(const std::vector<EdgeRef>& edges);

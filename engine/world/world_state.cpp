@@ -3,7 +3,46 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/error.hpp"
+
 namespace dda {
+
+void WorldState::check_loaded(const LoadCheck& check) const {
+  for (std::size_t i = 0; i < rocks.size(); ++i) try {
+      validate(rocks[i], static_cast<int>(i));
+    } catch (const Error& e) {
+      check.fail(e.what());
+    }
+  for (std::size_t i = 0; i < joints.size(); ++i) try {
+      validate(joints[i], static_cast<int>(i));
+    } catch (const Error& e) {
+      check.fail(e.what());
+    }
+  blocks.check_loaded(check, rocks.size(), joints.size());
+  loads.check_loaded(check, blocks);
+  boundaries.check_loaded(check, blocks);
+  for (std::size_t i = 0; i < tracked.size(); ++i)
+    dda::check_loaded(check, tracked[i], blocks, msg("tracked point ", i));
+  for (std::size_t i = 0; i < contacts.size(); ++i) {
+    const Contact& c = contacts[i];
+    check.index(c.vblock, blocks.count(), "blocks", "contact ", i, "'s vertex block");
+    check.index(c.eblock, blocks.count(), "blocks", "contact ", i, "'s edge block");
+    check.require(c.vblock != c.eblock, "contact ", i, " joins block ", c.vblock, " to itself");
+    check.index(c.vertex, static_cast<std::size_t>(blocks.vertex_count(c.vblock)), "vertices", "contact ", i,
+                "'s vertex");
+    check.index(c.edge, static_cast<std::size_t>(blocks.vertex_count(c.eblock)), "edges", "contact ", i, "'s edge");
+    check.index(c.joint, joints.size(), "joint materials", "contact ", i, "'s joint material");
+    check.require(std::isfinite(c.length) && c.length >= 0 && c.scale > 0 && c.scale <= 1, "contact ", i,
+                  " has length ", c.length, " and scale ", c.scale);
+    check.require(c.slide_sign >= -1 && c.slide_sign <= 1, "contact ", i, "'s slide sign is ", int(c.slide_sign));
+    for (const double v :
+         {c.ref_param, c.friction_normal, c.friction_age, c.normal_force, c.shear_force, c.penetration})
+      check.require(!std::isnan(v), "contact ", i, " holds NaN");
+  }
+  check.require(std::isfinite(time) && steps >= 0 && std::isfinite(dt) && dt >= 0 && std::isfinite(half_height) &&
+                    half_height >= 0,
+                "its clock (t = ", time, ", step ", steps, ", dt = ", dt, ")");
+}
 
 double WorldState::measured_half_height() const {
   double lo = INFINITY, hi = -INFINITY;

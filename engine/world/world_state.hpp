@@ -7,6 +7,7 @@
 #include "block/blocks.hpp"
 #include "boundary/boundaries.hpp"
 #include "contact/contact.hpp"
+#include "core/load_check.hpp"
 #include "core/material.hpp"
 #include "loading/loads.hpp"
 #include "world/controls.hpp"
@@ -48,7 +49,11 @@ struct WorldState {
     ar.section("contacts"), ar(contacts);
     ar.section("clock"), ar(time, steps, dt, half_height, prepared, last_stats);
     ar.section("energy"), ar(energy);
+    if constexpr (Archive::reading) check_loaded(LoadCheck(ar.what()));
   }
+  // Read from a checkpoint: every index and size against the model, before
+  // the Stepper builds anything from it. Throws dda::Error naming the damage.
+  void check_loaded(const LoadCheck& check) const;
 
   // Half the y extent of the blocks as they are now.
   double measured_half_height() const;

@@ -9,7 +9,8 @@
 
 namespace dda::script {
 
-// `dda run`: returns the process exit code (0 ok, 1 script error, 130 interrupted).
+// `dda run`: returns the process exit code (0 ok, 1 script error, 130
+// interrupted, 143 stopped by SIGTERM).
 struct RunOptions {
   std::string command_line;  // as typed, for the run log
   std::string script;
@@ -17,6 +18,12 @@ struct RunOptions {
   Session session;
 };
 int run_batch(const RunOptions& options);
+
+// Before a run: the output folder can be made and written (a file created
+// in it and removed), and its file system has space; "" when so, else why
+// not. Less than kLowSpaceBytes free gives `warning` (the run goes on).
+std::string check_output_folder(const std::filesystem::path& folder, std::string& warning);
+inline constexpr double kLowSpaceBytes = 100e6;
 
 // `dda console [SCRIPT]`
 int run_console(const RunOptions& options);

@@ -2,6 +2,7 @@
 // each, --version. A command-line error prints its cause and one line of
 // usage (exit status 2); --help prints the options (the man page is made
 // from `dda --help`).
+#include <cerrno>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -13,6 +14,7 @@
 
 #ifdef DDA_HAVE_RENDER
 #include "core/error.hpp"
+#include "frame/renderer.hpp"
 #include "scene/field.hpp"
 #endif
 
@@ -43,13 +45,14 @@ const char* kRunOptions =
     "  --frame-size WxH   their size in pixels (default 1280x720)\n"
     "  --vtu N            every model writes ParaView files (VTU, PVD) every N steps into DIR/vtu\n"
     "  --checkpoint-every N | Ts  every model writes DIR/checkpoint.ckpt every N steps or T s of\n"
-    "                     simulated time (e.g. 0.01s), and when Ctrl-C stops the run\n"
+    "                     simulated time (e.g. 0.01s), and when Ctrl-C or SIGTERM stops the run\n"
     "  --restart FILE     (dda run) continue from a checkpoint: the script runs again, and its model\n"
     "                     takes the checkpoint's state at its first stepping call\n"
     "  -h, --help         this text\n"
     "\n"
     "Exit status:\n"
-    "  0 success, 1 error in the script, 2 bad command line, 130 interrupted (Ctrl-C)\n";
+    "  0 success, 1 error in the script, 2 bad command line, 130 interrupted (Ctrl-C),\n"
+    "  143 stopped by SIGTERM (both after a final checkpoint, with --checkpoint-every)\n";
 
 const char* kCommands =
     "Commands:\n"
@@ -97,8 +100,8 @@ void print_help(const std::string& command) {
 // "unknown option '--frame'" (did you mean '--frames'?)
 std::string unknown_option(const std::string& given) {
   static const char* const known[] = {
-      "--out",        "--threads", "--set",         "--list-params", "--quiet", "--frames",           "--frame-range",
-      "--frame-view", "--movie",   "--frame-field", "--frame-size",  "--vtu",   "--checkpoint-every", "--restart",
+      "--out",        "--threads",  "--set",         "--list-params", "--quiet", "--frames",           "--frame-range",
+      "--frame-view", "--movie",    "--frame-field", "--frame-size",  "--vtu",   "--checkpoint-every", "--restart",
       "--live",       "--realtime", "--help"};
   std::string text = "unknown option '" + given + "'";
   const char* best = nullptr;
@@ -115,6 +118,35 @@ int usage_error(const std::string& command, const char* fmt, const char* arg) {
   std::fprintf(stderr, "\n%s\n", short_usage(command).c_str());
   return 2;
 }
+
+// A whole number of at least `min` (no sign, no exponent, no overflow).
+bool whole_number(const char* v, long min, long& n) {
+  if (!v || !*v) return false;
+  char* end = nullptr;
+  errno = 0;
+  n = std::strtol(v, &end, 10);
+  return *end == '\0' && errno == 0 && n >= min;
+}
+
+#ifdef DDA_HAVE_RENDER
+// The frame options of the command line, checked here as the renderer
+// checks them: a bad value is the command line's error (exit 2), not one of
+// the script line that makes the model. "" when they are good.
+std::string frame_options_error(const dda::script::Session& s) {
+  dda::render::FrameOptions f;
+  f.width = s.frames_width;
+  f.height = s.frames_height;
+  if (s.frames_range_set) f.range = dda::render::ValueRange{s.frames_range[0], s.frames_range[1]};
+  if (s.frames_view_set)
+    f.view = dda::render::Box{s.frames_view[0], s.frames_view[1], s.frames_view[2], s.frames_view[3]};
+  try {
+    f.validate();
+  } catch (const dda::Error& e) {
+    return e.what();
+  }
+  return "";
+}
+#endif
 
 }  // namespace
 
@@ -166,10 +198,9 @@ int main(int argc, char** argv) {
       opt.session.out_dir = v;
     } else if (a == "--threads") {
       const char* v = value("--threads");
-      char* end = nullptr;
-      const long n = v ? std::strtol(v, &end, 10) : -1;
-      if (!v || !*v || *end != '\0' || n < 0 || n > 4096)
-        return bad("--threads needs a whole number >= 0, got '%s'", v ? v : "");
+      long n = 0;
+      if (!whole_number(v, 0, n) || n > 4096)
+        return bad("--threads needs a whole number from 0 (every core) to 4096, got '%s'", v ? v : "");
       opt.session.threads = static_cast<int>(n);
     } else if (a == "--set") {
       const char* v = value("--set");
@@ -237,10 +268,8 @@ int main(int argc, char** argv) {
       opt.session.frames_height = h;
     } else if (a == "--vtu") {
       const char* v = value("--vtu");
-      char* end = nullptr;
-      const long n = v ? std::strtol(v, &end, 10) : -1;
-      if (!v || !*v || *end != '\0' || n < 1)
-        return bad("--vtu needs a whole number of steps >= 1, got '%s'", v ? v : "");
+      long n = 0;
+      if (!whole_number(v, 1, n)) return bad("--vtu needs a whole number of steps >= 1, got '%s'", v ? v : "");
       opt.session.vtu_every = n;
     } else if (a == "--restart") {
       const char* v = value("--restart");
@@ -287,6 +316,11 @@ int main(int argc, char** argv) {
       return bad("unexpected argument '%s' (script arguments go after --)", a.c_str());
     }
   }
+#ifdef DDA_HAVE_RENDER
+  if (opt.session.frames_every > 0)
+    if (const std::string e = frame_options_error(opt.session); !e.empty())
+      return bad("--frame-size, --frame-range, --frame-view: %s", e.c_str());
+#endif
   if (command == "run") {
     if (opt.script.empty()) return bad("%s", "dda run needs a script");
     return dda::script::run_batch(opt);

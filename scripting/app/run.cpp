@@ -1,7 +1,9 @@
 // `dda run` (batch): the run log, a restart's checkpoint, the script in a
 // fresh state with Ctrl-C handled, and the end of the run (results, outputs
 // checked, exit status).
+#include <fcntl.h>
 #include <sched.h>
+#include <sys/statvfs.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -93,22 +95,39 @@ bool read_restart(Session& s, std::string& error) {
   return true;
 }
 
-// Writes <out>/result.csv (a header of the names, one row of values); false and `why` if it cannot.
-bool write_results(const Session& s, std::string& why) {
+// What <out>/result.csv holds: a header of the names, one row of values.
+std::string results_csv(const Session& s) {
   std::string header, row;
   for (const auto& [k, v] : s.results) {
     header.append(header.empty() ? "" : ",").append(csv_field(k));
     row.append(row.empty() ? "" : ",").append(csv_field(v.text));
   }
+  return header + "\n" + row + "\n";
+}
+
+// Writes <out>/result.csv; false and `why` if it cannot.
+bool write_results(const Session& s, std::string& why) {
   try {
     std::error_code ec;
     std::filesystem::create_directories(s.out_dir, ec);
-    write_file_atomically(s.out_dir / "result.csv", header + "\n" + row + "\n");
+    write_file_atomically(s.out_dir / "result.csv", results_csv(s));
   } catch (const std::exception& e) {
     why = msg("the results: ", e.what());
     return false;
   }
   return true;
+}
+
+// *.part files of a killed run: removed before this run writes its own
+// (written before this run started: a concurrent writer's are younger).
+void remove_leftovers(Session& s, std::filesystem::file_time_type started) {
+  const auto removed = remove_stray_part_files(s.out_dir, started);
+  if (removed.empty()) return;
+  std::string names;
+  for (std::size_t i = 0; i < removed.size() && i < 5; ++i) names += (i ? ", " : "") + removed[i].string();
+  if (removed.size() > 5) names += msg(" and ", removed.size() - 5, " more");
+  s.log.line(
+      msg("removed ", removed.size(), " unfinished file(s) an earlier run left (killed while writing): ", names));
 }
 
 // How the run ends, whether the script returns or calls os.exit: results
@@ -123,6 +142,7 @@ int finish_batch(lua_State* L, bool ok, std::string error, int requested, std::c
     if (ok) ok = false, error = failure;
   stop_background_runs();
   const bool interrupted = interrupt_requested();
+  const int interrupted_status = 128 + interrupt_signal();  // 130 (Ctrl-C), 143 (SIGTERM)
   remove_interrupt_handler();
   // A script that failed early never reached its dda.param calls: no warnings then.
   if (ok)
@@ -130,6 +150,8 @@ int finish_batch(lua_State* L, bool ok, std::string error, int requested, std::c
   if (!session(L).results.empty()) {
     std::string why;
     if (!write_results(session(L), why)) {
+      // Computed and not written: on stderr, so that nothing is lost.
+      std::fprintf(stderr, "dda: %s; the results are:\n%s", why.c_str(), results_csv(session(L)).c_str());
       if (ok) error = why;
       ok = false;
     }
@@ -154,18 +176,18 @@ int finish_batch(lua_State* L, bool ok, std::string error, int requested, std::c
     std::fprintf(stderr, "dda: %s\n", error.c_str());
     log.line("error: " + error);
     if (interrupted) {
-      std::fprintf(stderr, "dda: interrupted; the monitor files hold every step computed so far\n");
-      status = 130;
+      std::fprintf(stderr, "dda: %s; the monitor files hold every step computed so far\n", interrupt_name());
+      status = interrupted_status;
     }
   } else if (interrupted) {
-    status = 130;
+    status = interrupted_status;
   }
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   set_run_log(nullptr);
   log.line(msg("end: exit status ", status,
-               status == 0     ? " (ok)"
-               : status == 130 ? " (interrupted)"
-                               : " (error)",
+               status == 0                                   ? " (ok)"
+               : interrupted && status == interrupted_status ? (status == 130 ? " (interrupted)" : " (terminated)")
+                                                             : " (error)",
                " after ", wall, " s"));
   return status;
 }
@@ -216,13 +238,49 @@ int list_params(const RunOptions& options) {
 
 }  // namespace
 
+std::string check_output_folder(const std::filesystem::path& folder, std::string& warning) {
+  std::error_code ec;
+  std::filesystem::create_directories(folder, ec);
+  if (ec) return msg("cannot create it: ", ec.message());
+  if (!std::filesystem::is_directory(folder, ec)) return "it is not a folder";
+  // Writable: a file created there and removed (access() would pass a
+  // read-only file system for root).
+  const std::filesystem::path probe = folder / msg(".dda-write-check-", getpid());
+  const int fd = ::open(probe.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0600);
+  if (fd < 0) return msg("cannot write in it: ", std::strerror(errno));
+  ::close(fd);
+  ::unlink(probe.c_str());
+  struct statvfs fs {};
+  if (::statvfs(folder.c_str(), &fs) == 0) {
+    const double free_bytes = static_cast<double>(fs.f_bavail) * static_cast<double>(fs.f_frsize);
+    if (fs.f_bavail == 0) return "its file system has no space left";
+    if (free_bytes < kLowSpaceBytes)
+      warning = msg("the output folder '", folder.string(), "' has only ", free_bytes / 1e6,
+                    " MB free: outputs may not fit (monitors, frames, checkpoints)");
+  }
+  return "";
+}
+
 int run_batch(const RunOptions& options) {
   if (options.session.params_only) return list_params(options);
   const auto start = std::chrono::steady_clock::now();
+  const auto started = std::filesystem::file_time_type::clock::now();
   Session s = options.session;
   if (!s.quiet) s.progress = isatty(fileno(stderr)) && isatty(fileno(stdout)) ? ProgressMode::Bar : ProgressMode::Lines;
   if (const char* env = std::getenv("DDA_PROGRESS_SECONDS"); env && *env) s.progress_seconds = std::atof(env);
+  // The output folder first: a run whose results cannot be written is not started.
+  std::string folder_warning;
+  if (const std::string why = check_output_folder(s.out_dir, folder_warning); !why.empty()) {
+    std::fprintf(stderr, "dda: the output folder '%s' cannot be used: %s; give another with --out\n",
+                 s.out_dir.string().c_str(), why.c_str());
+    return 1;
+  }
   log_start(s, options);
+  remove_leftovers(s, started);
+  if (!folder_warning.empty()) {
+    std::fprintf(stderr, "dda: warning: %s\n", folder_warning.c_str());
+    s.log.line("warning: " + folder_warning);
+  }
   std::string restart_error;
   if (!read_restart(s, restart_error)) {
     std::fprintf(stderr, "dda: %s\n", restart_error.c_str());

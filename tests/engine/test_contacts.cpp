@@ -122,6 +122,24 @@ TEST(Contacts, FarApartBlocksHaveNoCandidatePairs) {
   EXPECT_EQ(find_candidate_pairs(p.view(), 0.2).size(), 1u);
 }
 
+// Blocks scattered as far apart as a double reaches (a model that diverged,
+// a damaged checkpoint): the grid's cell counts must not overflow a long (the
+// checkpoint fuzzer found 3e223 cells cast to one: UBSan's
+// float-cast-overflow), and a span that overflows a double leaves no grid.
+// The touching pair is found either way, and no other.
+TEST(Contacts, BlocksAsFarApartAsADoubleReachesArePaired) {
+  const std::vector<std::pair<int, int>> touching{{0, 1}};
+  Polys far;
+  far.add(test::rectangle(0, 0, 1, 1));
+  far.add(test::rectangle(1.1, 0, 1, 1));
+  far.add(test::rectangle(1e220, 0, 1, 1));
+  EXPECT_EQ(find_candidate_pairs(far.view(), 0.2), touching);
+  Polys overflowing = far;
+  overflowing.add(test::rectangle(-1.7e308, 0, 1e300, 1));
+  overflowing.add(test::rectangle(1.7e308, 0, 1e300, 1));
+  EXPECT_EQ(find_candidate_pairs(overflowing.view(), 0.2), touching);
+}
+
 // The automatic contact range: a tenth of the median edge (0.05 m here)
 // instead of Shi's 2.5·g2·(half height) = 0.625 m, which in a fine model
 // (0.5 m blocks in a 100 m high model) would pair every block with its second

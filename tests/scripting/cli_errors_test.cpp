@@ -145,8 +145,9 @@ TEST(CliErrors, MissingScript) {
 // names the command's --help (not the whole help).
 TEST(CliErrors, BadCommandLine) {
   TempDir dir("cli");
-  for (const char* args : {"run x.lua --bogus", "run x.lua --set novalue", "run x.lua --threads -1", "run",
-                           "frobnicate", "", "console --frames", "sweep x.lua"}) {
+  for (const char* args :
+       {"run x.lua --bogus", "run x.lua --set novalue", "run x.lua --threads -1", "run x.lua --threads 5000",
+        "run x.lua --vtu 99999999999999999999", "run", "frobnicate", "", "console --frames", "sweep x.lua"}) {
     const auto r = run_dda(args, dir.path);
     EXPECT_EQ(r.exit_code, 2) << args;
     EXPECT_LE(std::count(r.err.begin(), r.err.end(), '\n'), 2) << args << ":\n" << r.err;
@@ -287,6 +288,15 @@ TEST(CliFrames, FramesEveryNStepsFromTheCommandLine) {
   EXPECT_EQ(run_dda("run x.lua --frames 10 --frame-field sigma_zz", dir.path).exit_code, 2);
   EXPECT_EQ(run_dda("run x.lua --frames 0", dir.path).exit_code, 2);
   EXPECT_EQ(run_dda("run x.lua --frame-size 100", dir.path).exit_code, 2);
+  // Values the renderer refuses are the command line's errors, not the
+  // script line's that makes the model (was: "x.lua:1: dda.model: frame size ...").
+  write_file(dir / "x.lua", "dda.model{}\n");
+  for (const char* bad : {"--frame-size 9000x9000", "--frame-range -inf,inf"}) {
+    const auto e = run_dda(std::string("run x.lua --frames 10 ") + bad, dir.path);
+    EXPECT_EQ(e.exit_code, 2) << bad << "\n" << e.err;
+    EXPECT_NE(e.err.find("dda: --frame-size, --frame-range, --frame-view: "), std::string::npos) << e.err;
+    EXPECT_EQ(e.err.find("x.lua:"), std::string::npos) << e.err;
+  }
 }
 #endif
 

@@ -3,6 +3,11 @@
 // liblua; getmetatable(m).__gc(m) deleted a model that handles still used.
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <fstream>
+#include <sstream>
+
+#include "core/error.hpp"
 #include "lua_state_test.hpp"
 #include "script_helpers.hpp"
 #include "scripting.hpp"
@@ -78,6 +83,100 @@ TEST_F(Faults, ModelMetatableIsProtected) {
   run("assert(mt == 'dda.Model')\n"
       "assert(m:rock{ density = 2500, E = 2e9, nu = 0.2 })\n"
       "assert(tostring(m):find('dda.Model %(0 blocks'))");
+}
+
+}  // namespace
+
+namespace {
+
+// Two blocks on the ground, for the tests below.
+const char* kTwoBlocks =
+    "m = dda.model{ gravity = {0, -9.81}, g1 = 1e-4 }\n"
+    "local rock = m:rock{ density = 2000, E = 1e9, nu = 0.25 }\n"
+    "m:domain{ box = {0, 0, 2, 1}, rock = rock }\n"
+    "m:joint_set{ dip = 90, spacing = 1 }\n"
+    "m:generate()\n";
+
+class ScriptFaults : public Faults {};
+
+TEST_F(ScriptFaults, ClosingTheModelInsideALoadFunctionIsRefused) {
+  // The functions run when the load is given (and before each step): m:close()
+  // there freed the World under the call (SIGSEGV, a member call on null).
+  const char* cases[] = {
+      "m:edges{ on_segment = {0, 0, 0, 1} }:pressure(function(t) m:close() return 0 end)",
+      "m:point_load{ at = {0.5, 0.5}, force = function(t) m:close() return 1, 0 end }",
+      "m:target{ at = {0.5, 0.5}, direction = {1, 0}, displacement = function(t) m:close() return 0 end }",
+      "m:run{ steps = 2, callback = function(mm) "
+      "  m:point_load{ at = {1.5, 0.5}, force = function(t) m:close() return 1, 0 end } end }",
+  };
+  for (const char* c : cases) {
+    run(kTwoBlocks);
+    const std::string e = error_of(c);
+    EXPECT_NE(e.find("m:close: the model cannot be changed or stepped from inside a load history function"),
+              std::string::npos)
+        << c << "\n"
+        << e;
+    run("m:step() m:close()");  // the model is still whole
+  }
+}
+
+TEST_F(ScriptFaults, ThreadsAreBounded) {
+  // 1e7 segfaulted inside TBB; 3e9 wrapped to a negative number in the message.
+  std::string e = error_of("dda.model{ threads = 1e7 }");
+  EXPECT_NE(e.find("option 'threads' must be zero (every core) or 1 to 4096, got 10000000"), std::string::npos) << e;
+  e = error_of("dda.model{ threads = 3e9 }");
+  EXPECT_NE(e.find("got 3000000000"), std::string::npos) << e;
+  e = error_of("m = dda.model{}\nm:controls{ open_close_limit = 3e9 }");
+  EXPECT_NE(e.find("option 'open_close_limit' must be at most 2147483647, got 3000000000"), std::string::npos) << e;
+  run("m = dda.model{ threads = 4096 }\nassert(m:controls().threads == 4096)");
+}
+
+TEST_F(ScriptFaults, FramesEveryZeroIsRefused) {
+  run(kTwoBlocks);
+  const std::string e = error_of("m:frames{ every = 0 }");
+  EXPECT_NE(e.find("m:frames: option 'every' must be a whole number of steps >= 1, got 0"), std::string::npos) << e;
+}
+
+TEST_F(ScriptFaults, ATruncatedAccelerogramIsRefused) {
+  // 743 of the 1,845 values its header announces: was read as a short record.
+  std::ifstream in(std::string(DDA_SOURCE_DIR) + "/data/imperial_valley_1979_el_centro_array7_S50W.dat");
+  std::string line, text;
+  int values = 0;
+  while (std::getline(in, line) && values < 743) {
+    if (line.empty() || line[0] != '%') {
+      std::istringstream words(line);
+      std::string w, kept;
+      while (values < 743 && words >> w) kept += " " + w, ++values;
+      line = kept;
+    }
+    text += line + "\n";
+  }
+  dda::test::write_file(dir_->path / "short.dat", text);
+  const std::string e = error_of("\ndda.ground_motion{ file = dir .. 'short.dat' }");
+  EXPECT_NE(e.find("test:2: dda.ground_motion: accelerogram '"), std::string::npos) << e;
+  EXPECT_NE(e.find("short.dat' is truncated: its header announces 1845 values, it holds 743"), std::string::npos) << e;
+}
+
+TEST_F(ScriptFaults, AHoleOfATrillionSegmentsIsRefusedBeforeMakingThem) {
+  run("m = dda.model{}\nm:domain{ box = {0, 0, 2, 1}, rock = m:rock{ density = 2000, E = 1e9, nu = 0.25 } }");
+  const std::string e = error_of("m:hole{ circle = {1, 0.5, 0.2}, segments = 1e12 }");
+  EXPECT_NE(e.find("m:hole: a circle of 1000000000000 segments needs about 1e+06 GB of memory"), std::string::npos)
+      << e;
+  EXPECT_NE(e.find("give fewer segments (option 'segments', 32 by default)"), std::string::npos) << e;
+}
+
+TEST_F(ScriptFaults, MessagesSayNanWithoutASign) {
+  // 0/0 is a NaN with its sign bit set: streams printed "-nan".
+  const std::string e = error_of("dda.model{ g2 = 0/0 }");
+  EXPECT_NE(e.find("got nan"), std::string::npos) << e;
+  EXPECT_EQ(e.find("-nan"), std::string::npos) << e;
+  EXPECT_EQ(dda::msg(-std::nan("")), "nan");
+}
+
+TEST_F(ScriptFaults, ABowTieIsSelfIntersectingNotZeroArea) {
+  run("m = dda.model{}\nrock = m:rock{ density = 2000, E = 1e9, nu = 0.25 }");
+  const std::string e = error_of("m:add_block{ polygon = {{0, 0}, {1, 1}, {1, 0}, {0, 1}}, rock = rock }");
+  EXPECT_NE(e.find("polygon is self-intersecting (edges 1 and 3 cross)"), std::string::npos) << e;
 }
 
 }  // namespace

@@ -3,6 +3,7 @@ running dda, the console through a pty, and plain checks that print what
 failed."""
 import os
 import pty
+import resource
 import select
 import shutil
 import signal
@@ -39,6 +40,15 @@ def run(args, cwd, env=None, stdin=None, timeout=300):
     e.update(env or {})
     return subprocess.run([DDA] + args, cwd=cwd, env=e, input=stdin, capture_output=True, text=True,
                           timeout=timeout)
+
+
+def file_size_limit(limit):
+    """For subprocess's preexec_fn: files of at most `limit` bytes, SIGXFSZ ignored, so that
+    write(2) writes what fits and then fails with EFBIG, as a disk filling up."""
+    def pre():
+        signal.signal(signal.SIGXFSZ, signal.SIG_IGN)
+        resource.setrlimit(resource.RLIMIT_FSIZE, (limit, limit))
+    return pre
 
 
 class Console:

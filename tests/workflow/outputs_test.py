@@ -10,11 +10,11 @@ then fails with EFBIG, as a disk filling in the middle of a row); and, when
 run as root, a 64 KiB tmpfs that fills during the run.
 Run: outputs_test.py path/to/dda"""
 import os
-import resource
+import shutil
 import signal
 import subprocess
 
-from common import DDA, SOURCE, check, finish, read, run, scratch, write
+from common import DDA, file_size_limit, SOURCE, check, finish, read, run, scratch, write
 
 MODEL = """
 local m = dda.model{ plane = 'stress', g1 = 1e-4, gravity = {0, -9.81} }
@@ -50,15 +50,8 @@ check("cannot write 'full/mon.csv': No space left on device" in r.stderr and "mo
 check("done" not in r.stdout, "the script stopped at the failing write", r.stdout)
 
 # ---- the disk fills in the middle of the run (a file-size limit) -------------------------
-def limited(limit):
-    def pre():
-        signal.signal(signal.SIGXFSZ, signal.SIG_IGN)
-        resource.setrlimit(resource.RLIMIT_FSIZE, (limit, limit))
-    return pre
-
-
 p = subprocess.run([DDA, "run", "long.lua", "--out", "lim", "--quiet"], cwd=d, capture_output=True, text=True,
-                   preexec_fn=limited(20000), timeout=300)
+                   preexec_fn=file_size_limit(20000), timeout=300)
 csv = read(os.path.join(d, "lim", "mon.csv"))
 check(p.returncode == 1, "file-size limit reached mid-run: exit status 1", (p.returncode, p.stderr))
 check("monitor 'mon': cannot write 'lim/mon.csv': File too large" in p.stderr and "long.lua:" in p.stderr,
@@ -95,38 +88,34 @@ check(r.returncode == 1 and "run log: cannot write 'log/run.log'" in r.stderr, "
       (r.returncode, r.stderr))
 check(complete_rows(read(os.path.join(d, "log", "mon.csv")), 5), "the run went on: its CSV is complete")
 
-# ---- frames and plots: a PNG that cannot be written ---------------------------------------
+# ---- frames and plots: a PNG that cannot be written (a file-size limit) --------------------
 write(os.path.join(d, "plot.lua"), 'dda.plot{ series = {{ name = "a", x = {0, 1}, y = {0, 1} }}, file = "p.png" }\n')
-os.makedirs(os.path.join(d, "pfull"))
-os.symlink("/dev/full", os.path.join(d, "pfull", "p.png.part"))
-r = run(["run", "plot.lua", "--out", "pfull", "--quiet"], d)
-check(r.returncode == 1 and "cannot write 'pfull/p.png': No space left on device" in r.stderr,
-      "plot PNG on a full disk: exit 1, the file named", (r.returncode, r.stderr))
+p = subprocess.run([DDA, "run", "plot.lua", "--out", "pfull", "--quiet"], cwd=d, capture_output=True, text=True,
+                   preexec_fn=file_size_limit(4096), timeout=300)
+check(p.returncode == 1 and "cannot write 'pfull/p.png': File too large" in p.stderr and
+      not os.path.exists(os.path.join(d, "pfull", "p.png")) and not os.path.exists(os.path.join(d, "pfull", "p.png.part")),
+      "plot PNG on a full disk: exit 1, the file named, no half PNG", (p.returncode, p.stderr))
 
-# ---- VTU files on a full disk ---------------------------------------------------------------
-r = run(["run", "mon.lua", "--out", "vfull", "--quiet", "--vtu", "5"], d, timeout=300)
-vtus = sorted(os.listdir(os.path.join(d, "vfull", "vtu")))
-first = [n for n in vtus if n.endswith(".vtu")]
-if first:
-    os.remove(os.path.join(d, "vfull", "vtu", first[0]))
-    os.symlink("/dev/full", os.path.join(d, "vfull", "vtu", first[0] + ".part"))
-    r = run(["run", "mon.lua", "--out", "vfull", "--quiet", "--vtu", "5"], d, timeout=300)
-    check(r.returncode == 1 and "cannot write" in r.stderr and first[0] in r.stderr and "No space left" in r.stderr,
-          "VTU on a full disk: exit 1, the file named", (r.returncode, r.stderr))
-else:
-    check(False, "--vtu 5 wrote VTU files", vtus)
+# ---- VTU files on a full disk (a file-size limit the run log fits under, a VTU file does not) ----
+write(os.path.join(d, "vtu.lua"), MODEL + "m:run{ steps = 10 }\n")
+p = subprocess.run([DDA, "run", "vtu.lua", "--out", "vfull", "--quiet", "--vtu", "5"], cwd=d, capture_output=True,
+                   text=True, preexec_fn=file_size_limit(2000), timeout=300)
+check(p.returncode == 1 and "cannot write 'vfull/vtu/" in p.stderr and "File too large" in p.stderr,
+      "VTU on a full disk: exit 1, the file named", (p.returncode, p.stderr))
 
-# ---- sweep records and tables on a full disk ------------------------------------------------
+# ---- sweep records and tables that cannot be written ------------------------------------------------
 write(os.path.join(d, "sw.lua"), 'local a = dda.param("a", 1)\ndda.result{ a = a }\n')
-os.makedirs(os.path.join(d, "swo", "run_001"))
-os.symlink("/dev/full", os.path.join(d, "swo", "run_001", "status.txt.part"))
+# (a folder that is not empty: the sweep removes an old record before the run)
+os.makedirs(os.path.join(d, "swo", "run_001", "status.txt", "x"))
 r = run(["sweep", "sw.lua", "--grid", "a=1,2", "--out", "swo"], d)
-check(r.returncode == 1 and "cannot write 'swo/run_001/status.txt': No space left on device" in r.stderr,
+check(r.returncode == 1 and "cannot write 'swo/run_001/status.txt': it is a folder" in r.stderr,
       "a sweep whose run record cannot be written: exit 1, the file named (was: 0)", (r.returncode, r.stderr))
-os.symlink("/dev/full", os.path.join(d, "swo", "summary.csv.part"))
+shutil.rmtree(os.path.join(d, "swo", "run_001", "status.txt"))
+os.remove(os.path.join(d, "swo", "summary.csv"))
+os.makedirs(os.path.join(d, "swo", "summary.csv", "x"))
 r = run(["sweep", "sw.lua", "--grid", "a=1,2", "--out", "swo"], d)
-check(r.returncode == 1 and "cannot write 'swo/summary.csv': No space left on device" in r.stderr,
-      "a sweep table on a full disk: exit 1, the file named", (r.returncode, r.stderr))
+check(r.returncode == 1 and "cannot write 'swo/summary.csv': it is a folder" in r.stderr,
+      "a sweep table that cannot be written: exit 1, the file named", (r.returncode, r.stderr))
 
 # ---- a paper script's own CSV (io.open) on a full disk ---------------------------------------
 os.makedirs(os.path.join(d, "bg"))

@@ -107,6 +107,26 @@ r = dda("--set", "scene=slope", "--set", "time=20", "--out", "int", "--restart",
 check(r.returncode == 0 and hash_of(r) == straight, "--restart after Ctrl-C: the straight run's hash",
       "%s\n%s against %s" % (r.stderr, hash_of(r), straight))
 
+# SIGTERM (what a batch queue sends before SIGKILL) as Ctrl-C: a final checkpoint,
+# every file complete, exit 143; the restart ends with the straight run's hash
+# (was: killed at once, no checkpoint).
+p = subprocess.Popen(args + ["--out", "term", "--checkpoint-every", "1000000"], cwd=d, stderr=subprocess.PIPE,
+                     stdout=subprocess.PIPE, text=True, env=dict(os.environ, DDA_PROGRESS_SECONDS="0"))
+line = p.stderr.readline()
+p.send_signal(signal.SIGTERM)
+out, err = p.communicate(timeout=120)
+ckpt = os.path.join(d, "term", "checkpoint.ckpt")
+log = read(os.path.join(d, "term", "run.log"))
+probe = read(os.path.join(d, "term", "probe.csv"))
+check(p.returncode == 143 and os.path.exists(ckpt) and "terminated (SIGTERM)" in err,
+      "SIGTERM: exit 143, a final checkpoint, the cause named", line + err)
+check("end: exit status 143 (terminated)" in log and probe.endswith("\n") and
+      not [f for f in os.listdir(os.path.join(d, "term")) if f.endswith(".part")],
+      "SIGTERM: the run log closed, the monitor file complete, no .part left", log[-300:])
+r = dda("--set", "scene=slope", "--set", "time=20", "--out", "term", "--restart", ckpt)
+check(r.returncode == 0 and hash_of(r) == straight, "--restart after SIGTERM: the straight run's hash",
+      "%s\n%s against %s" % (r.stderr, hash_of(r), straight))
+
 # m:save and dda.load: in the same script (a branch point) and in a fresh process.
 write(os.path.join(d, "branch.lua"), r"""
 local dda = require "dda"
