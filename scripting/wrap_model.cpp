@@ -211,6 +211,21 @@ void log_controls_once(lua_State* L, ScriptModel& m) {
 // steps from where the straight run stood when it began (replay_mark), so
 // m:step(n) and m:run{steps = n} end where they ended in the straight run
 // (at once, if that is before the checkpoint), as m:run{time = t} does.
+// Before the first step: the wave model, the functions sampled over the run
+// this call asks for (to its end time, or its steps at the first step's Δt);
+// what it decided goes to the run log, its warnings to stderr too.
+void decide_wave_model_once(lua_State* L, ScriptModel& m, const RunPlan& plan) {
+  if (m.world().wave_model().decided) return;
+  const World& w = m.world();
+  const double dt = w.controls().g1 > 0 ? w.controls().g1 : w.suggested_time_step();
+  const double window = plan.t_end >= 0 ? plan.t_end : static_cast<double>(std::max<long>(plan.steps, 0)) * dt;
+  const WaveModel& wave = m.decide_wave_model(L, window);
+  Session& s = session(L);
+  for (const std::string& note : wave.notes)
+    if (s.log.is_open()) s.log.line("wave model: " + note);
+  for (const std::string& warning : wave.warnings) warn(warning);
+}
+
 void run_loop(lua_State* L, ScriptModel& m, const RunPlan& plan) {
   restart_if_pending(L, m);
   World& w = m.world();
@@ -218,6 +233,7 @@ void run_loop(lua_State* L, ScriptModel& m, const RunPlan& plan) {
   const double t0 = w.time();
   stop_if_interrupted(L, m);
   log_controls_once(L, m);
+  decide_wave_model_once(L, m, plan);
   Progress progress(L, t0, plan.t_end >= 0 ? plan.t_end : 0, s0, plan.steps >= 0 ? s0 + plan.steps : 0);
   for (;;) {
     if (plan.steps >= 0 && w.step_count() - s0 >= plan.steps) break;

@@ -24,6 +24,8 @@ class History {
   // acceleration to its displacement, from rest at t = 0).
   double double_integral(double t) const;
   bool empty() const { return t_.empty(); }
+  // The (t, value) points it was made from.
+  std::vector<std::pair<double, double>> points() const;
   template <class Archive>
   void fields(Archive& ar) {
     ar(t_, v_, area_);

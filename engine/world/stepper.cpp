@@ -138,7 +138,7 @@ void Stepper::begin_step(WorldState& w) {
   validate_controls(w.controls);
   for (int r = 0; r < static_cast<int>(w.rocks.size()); ++r) validate(w.rocks[r], r);
   for (int j = 0; j < static_cast<int>(w.joints.size()); ++j) validate(w.joints[j], j);
-  validate_landing_law(w.controls.restitution, w.controls.integrator, w.blocks);
+  validate_landing_law(w.controls.restitution, effective_integrator(w), w.blocks);
   derive_automatic_controls(w);
   set_up_threads(w.controls);
   derive_material_constants(w);
@@ -172,9 +172,11 @@ void Stepper::derive_material_constants(const WorldState& w) {
   for (std::size_t j = 0; j < w.joints.size(); ++j) tan_friction_[j] = std::tan(deg_to_rad(w.joints[j].friction_deg));
   contact_law_ = {g0_, c.shear_ratio, c.contact_tolerance * w.half_height, w.joints, tan_friction_, c.contact_law};
   contact_law_.friction_lag = c.friction_lag;
+  contact_law_.vertex_start = w.blocks.vertex_start;
+  contact_law_.joint_length = w.blocks.joint_length;
   scheme_.gg = c.gg;
-  scheme_.choose(c.integrator, c.rho_inf);
-  scheme_.mesh_mass = c.mesh_mass;
+  scheme_.choose(effective_integrator(w), c.rho_inf);
+  scheme_.mesh_mass = effective_mesh_mass(w);
 }
 
 // The second-order schemes' state of blocks that have none yet (new blocks):

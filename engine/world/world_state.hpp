@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "block/blocks.hpp"
+#include "block/remeshing.hpp"
 #include "boundary/boundaries.hpp"
 #include "contact/contact.hpp"
 #include "core/material.hpp"
@@ -12,6 +13,7 @@
 #include "world/controls.hpp"
 #include "world/energy_budget.hpp"
 #include "world/step_profile.hpp"
+#include "world/wave_model.hpp"
 
 namespace dda {
 
@@ -32,6 +34,10 @@ struct WorldState {
   bool prepared = false;   // the first-step checks ran on these blocks
   StepStats last_stats;
   EnergyBudget energy;
+  // The wave model decided before the first step, and what meshing the
+  // blocks in place changed (world/wave_model.hpp).
+  WaveModel wave;
+  Remeshing remeshing;
 
   // What a checkpoint holds (core/archive.hpp): all of it.
   template <class Archive>
@@ -45,6 +51,7 @@ struct WorldState {
     ar.section("contacts"), ar(contacts);
     ar.section("clock"), ar(time, steps, dt, half_height, prepared, last_stats);
     ar.section("energy"), ar(energy);
+    ar.section("wave model"), ar(wave, remeshing);
   }
 
   // Half the y extent of the blocks as they are now.
