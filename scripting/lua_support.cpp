@@ -1,5 +1,7 @@
 #include "lua_support.hpp"
 
+#include "run_control.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <cstring>
@@ -66,6 +68,9 @@ int protected_call(lua_State* L, lua_CFunction f) {
   int ref = LUA_NOREF;
   bool failed = false;
   try {
+    // The models this call takes (run_control.hpp) are let go when it
+    // returns or throws, before any error is raised.
+    const ApiCallScope holds;
     return f(L);
   } catch (const LuaCallError& e) {
     failed = true;

@@ -217,6 +217,7 @@ class VecTimeInput {
   static VecTimeInput function(lua_State* L, int idx, std::string_view call, std::string_view what);
 
   bool is_constant() const { return !fn_.valid() && x_.is_constant() && y_.is_constant(); }
+  bool is_function() const { return fn_.valid() || x_.is_function() || y_.is_function(); }
   Vec2 at(lua_State* L, double t) const;
 
   // As TimeInput's.

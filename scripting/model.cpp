@@ -6,7 +6,9 @@
 #include <cstdio>
 #include <cstdlib>
 #include <limits>
+#include <mutex>
 
+#include "background_run.hpp"
 #include "core/archive.hpp"
 #include "core/error.hpp"
 #include "geometry/polygon.hpp"
@@ -61,12 +63,20 @@ void Monitor::close() { file.close(); }
 
 // ---- model -------------------------------------------------------------------------------
 
-ScriptModel::ScriptModel(const Controls& controls) : world_(std::make_unique<World>(controls)) {}
-ScriptModel::ScriptModel(World world) : world_(std::make_unique<World>(std::move(world))) {}
-ScriptModel::~ScriptModel() = default;
+ScriptModel::ScriptModel(const Controls& controls)
+    : world_(std::make_unique<World>(controls)), control_(std::make_shared<RunControl>(this)) {}
+ScriptModel::ScriptModel(World world)
+    : world_(std::make_unique<World>(std::move(world))), control_(std::make_shared<RunControl>(this)) {}
+
+ScriptModel::~ScriptModel() {
+  background.reset();                    // stops the run, if any, and waits for its thread
+  std::lock_guard hold(control_->lock);  // a live view may be copying a snapshot
+  control_->forget_model();
+}
 
 void ScriptModel::close() {
-  hooks_.clear();  // frame sequences finish their queued frames here
+  background.reset();  // a paused run ends here
+  hooks_.clear();      // frame sequences finish their queued frames here
   std::string failure;
   for (auto& m : monitors_) try {
       m->close();
@@ -411,9 +421,18 @@ const WaveModel& ScriptModel::decide_wave_model(lua_State* L, double window) {
   return wave;
 }
 
+bool ScriptModel::loads_call_lua() const {
+  for (const ScriptPointLoad& load : loads_)
+    if (load.force.is_function()) return true;
+  for (const ScriptTarget& target : targets_)
+    if (target.mode == ScriptTarget::Mode::Displacement && target.input.is_function()) return true;
+  for (const ScriptPressure& pr : pressures_)
+    if (pr.pressure.is_function()) return true;
+  return false;
+}
+
 StepStats ScriptModel::step(lua_State* L) {
-  Session& s = session(L);
-  if (s.threads >= 0) world_->controls().threads = s.threads;
+  if (threads_override >= 0) world_->controls().threads = threads_override;
   for (auto& m : monitors_)
     if (!m->started) {
       m->started = true;

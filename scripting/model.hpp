@@ -22,7 +22,10 @@
 #include "world/world.hpp"
 
 #include "core/output_file.hpp"
+#include "run_control.hpp"
 namespace dda::script {
+
+class BackgroundRun;
 
 // ---- Monitors -------------------------------------------------------------
 // Point fields, then the energy budget's terms since the first step (the
@@ -77,6 +80,7 @@ struct ForceInput {
   Vec2 direction = Vec2::UnitX();  // unit vector when `along`
   TimeInput magnitude;
   bool engine_driven() const { return along && !magnitude.is_function(); }
+  bool is_function() const { return along ? magnitude.is_function() : xy.is_function(); }
   bool constant() const { return along ? magnitude.is_constant() : xy.is_constant(); }
   Vec2 at(lua_State* L, double t) const { return along ? Vec2(direction * magnitude.at(L, t)) : xy.at(L, t); }
   bool is_lost_function() const { return along ? magnitude.is_lost_function() : xy.is_lost_function(); }
@@ -237,8 +241,13 @@ class ScriptModel {
   // Returns what was decided (notes, warnings).
   const WaveModel& decide_wave_model(lua_State* L, double window);
   // One step: evaluate the time-varying loads at the step's planned end time
-  // (on L, serially), World::step(), record the monitors.
+  // (on L, serially), World::step(), record the monitors. L is used only
+  // for loads that are Lua functions (loads_call_lua()).
   StepStats step(lua_State* L);
+  bool loads_call_lua() const;
+  // dda run --threads N: the thread count every step uses, whatever the
+  // script sets (−1: the controls').
+  int threads_override = -1;
   // The time at which the next step's loads are evaluated.
   double load_time() const;
   const Totals& totals() const { return totals_; }
@@ -246,6 +255,15 @@ class ScriptModel {
   bool busy() const { return busy_; }
 
   bool controls_logged = false;  // the run log has this model's controls
+
+  // ---- runs (run_control.hpp) ------------------------------------------------
+  // Who may touch the model now, and the run in progress; shared with the
+  // live view, which may outlive the model.
+  RunControl& control() { return *control_; }
+  const std::shared_ptr<RunControl>& shared_control() const { return control_; }
+  // The run going on in the background (m:start), or its end not yet
+  // collected; null otherwise.
+  std::unique_ptr<BackgroundRun> background;
 
   // ---- checkpoints (world/checkpoint.hpp) -------------------------------------
   // Its number in the run: 1 for the first model made (dda.model or
@@ -295,6 +313,7 @@ class ScriptModel {
   std::vector<SavedMonitor> saved_monitors_;  // of a model read from a checkpoint
   Totals totals_;
   bool busy_ = false;
+  std::shared_ptr<RunControl> control_;
 };
 
 }  // namespace dda::script

@@ -4,6 +4,7 @@
 #include <filesystem>
 #include <system_error>
 
+#include "background_run.hpp"
 #include "output_file.hpp"
 #include "scripting.hpp"
 #include "wrap.hpp"
@@ -149,27 +150,11 @@ bool add_results(lua_State* L, int idx, const char* what, std::string& why) {
   return true;
 }
 
-bool write_results(const Session& s, std::string& why) {
-  std::string header, row;
-  for (const auto& [k, v] : s.results) {
-    header.append(header.empty() ? "" : ",").append(csv_field(k));
-    row.append(row.empty() ? "" : ",").append(csv_field(v.text));
-  }
-  try {
-    std::error_code ec;
-    std::filesystem::create_directories(s.out_dir, ec);
-    write_file_atomically(s.out_dir / "result.csv", header + "\n" + row + "\n");
-  } catch (const std::exception& e) {
-    why = msg("the results: ", e.what());
-    return false;
-  }
-  return true;
-}
-
 int open_module(lua_State* L) {
   if (luaL_getmetatable(L, kModelType) == LUA_TNIL) {
     lua_pop(L, 1);
     register_model(L);  // first: the others add methods to dda.Model
+    register_background(L);
     register_geometry(L);
     register_materials(L);
     register_block(L);

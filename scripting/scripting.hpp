@@ -1,8 +1,9 @@
 #pragma once
-// The Lua layer's entry points: the `dda` module, batch runs and the console.
+// The Lua binding's entry points: the `dda` module, Lua states that have it,
+// and running scripts in them. The application (app/: `dda run`, the
+// console, sweeps) is built on these.
 #include <lua.hpp>
 
-#include <filesystem>
 #include <string>
 #include <vector>
 
@@ -28,37 +29,17 @@ bool run_file(lua_State* L, const std::string& path, const std::vector<std::stri
 // Runs a chunk of source text (tests, console).
 bool run_string(lua_State* L, const std::string& code, const std::string& chunkname, std::string& error);
 
-// `dda run`: returns the process exit code (0 ok, 1 script error, 130 interrupted).
-struct RunOptions {
-  std::string command_line;  // as typed, for the run log
-  std::string script;
-  std::vector<std::string> script_args;
-  Session session;
-};
-int run_batch(const RunOptions& options);
-
-// `dda console [SCRIPT]`
-int run_console(const RunOptions& options);
-
-// The script to run: the path as given when it names a file, else (for an
-// installed dda) the scene of that name in <prefix>/share/dda/scripts.
-std::filesystem::path resolve_script(const std::string& script);
-
-// `dda sweep SCRIPT --grid NAME=v1,v2 ...` (argv after "sweep"); returns the exit code.
-int run_sweep(int argc, char** argv);
+// lua_pcall of the function below its nargs arguments, with the message
+// handler that adds a traceback (as lua.c's docall).
+int call_with_traceback(lua_State* L, int nargs, int nresults);
 
 // Results (dda.result{...}, a script's return table): adds the string-keyed
 // numbers, strings and booleans of the table at idx to the session's results;
 // false and `why` for any other key or value.
 bool add_results(lua_State* L, int idx, const char* what, std::string& why);
-// Writes <out>/result.csv (a header of the names, one row of values); false and `why` if it cannot.
-bool write_results(const Session& s, std::string& why);
 
 // help([x]): prints the API's documentation (help.cpp).
 int dda_help(lua_State* L);
-
-// The commit the binary was built from ("unknown" outside git).
-const char* commit_id();
 
 // Warnings for --set names the script never read (typos), one line each.
 std::vector<std::string> unused_params(const Session& s);

@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <cstring>
 #include <ctime>
+#include <mutex>
 #include <new>
 #include <system_error>
 
@@ -117,6 +118,8 @@ void RunLog::failed(const std::string& why) {
 }
 
 void RunLog::line(const std::string& text) {
+  static std::mutex mutex;  // warnings come from background runs' threads too
+  std::lock_guard g(mutex);
   if (!file_.is_open()) return;
   char stamp[32];
   const std::time_t now = std::time(nullptr);
@@ -145,6 +148,8 @@ RunLog* g_run_log = nullptr;
 void set_run_log(RunLog* log) { g_run_log = log; }
 
 void warn(const std::string& text) {
+  static std::mutex mutex;
+  std::lock_guard g(mutex);
   std::fprintf(stderr, "dda: warning: %s\n", text.c_str());
   std::fflush(stderr);
   if (g_run_log) g_run_log->line("warning: " + text);

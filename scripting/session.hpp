@@ -9,6 +9,7 @@
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
+#include <functional>
 #include <map>
 #include <memory>
 #include <set>
@@ -21,6 +22,7 @@ namespace dda::script {
 
 using dda::AppendFile;
 class ScriptModel;
+class LiveServer;
 
 // How stepping calls show their progress: a redrawn line on a terminal,
 // plain lines (at most one every `progress_seconds`, and one per 5 % done)
@@ -103,11 +105,24 @@ struct Session {
   // simulated time, and when Ctrl-C stops it. 0: none.
   long checkpoint_steps = 0;
   double checkpoint_seconds = 0;
+  // What os.exit does in this run: given the main state and the status the
+  // script asked for, ends the run (closing the state) and returns the
+  // process's exit status. Empty: the state is closed and the process exits
+  // with the status asked for.
+  std::function<int(lua_State*, int)> on_exit;
+  // --realtime F: every run without its own `realtime` option is paced to F
+  // simulated seconds per wall-clock second. 0: as fast as it goes.
+  double realtime = 0;
+  // --live [ADDR:]PORT: the address the live view serves (empty: none), and
+  // the server once started (live_server.hpp); every model made is shown.
+  std::string live_address;
+  std::shared_ptr<LiveServer> live;
 };
 
 // Prints "dda: warning: text" on stderr and writes it to the run log of
 // `dda run` (set_run_log; warnings come from places that have no Lua state,
-// e.g. a frame sequence finishing its movie while the state closes).
+// e.g. a frame sequence finishing its movie while the state closes, and
+// from any thread: a background run's frames).
 void warn(const std::string& text);
 void set_run_log(RunLog* log);
 

@@ -2,9 +2,12 @@
 // edge selection.
 #include "wrap.hpp"
 
+#include "live_server.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <thread>
 
 namespace dda::script {
 
@@ -131,6 +134,7 @@ ScriptModel& push_model(lua_State* L, std::unique_ptr<ScriptModel> model) {
   box->model = nullptr;
   luaL_setmetatable(L, kModelType);  // its __gc deletes the model
   box->model = model.release();
+  show_live(L, *box->model);
   return *box->model;
 }
 
@@ -140,11 +144,17 @@ ScriptModel& check_model(lua_State* L, int idx, std::string_view call) {
     fail(call, ": expected a model as self, got ", type_of(L, idx),
          " (call methods with a colon: m:step(10), not m.step(10))");
   if (box->model->closed()) fail(call, ": attempt to use a closed model (m:close() was called)");
+  hold_for_call(*box->model);
   return *box->model;
 }
 
 void check_not_busy(const ScriptModel& m, std::string_view call) {
   if (m.busy()) fail(call, ": the model cannot be changed or stepped from inside a load history function");
+  const RunControl& c = *m.shared_control();
+  if (c.state() == RunState::Running && c.background() && c.stepping_thread() != std::this_thread::get_id())
+    fail(call,
+         ": the model is running in the background: m:pause() it first (m:resume() goes on), or m:wait() "
+         "for the run to end");
 }
 
 // ---- handles ------------------------------------------------------------------------------
@@ -176,6 +186,7 @@ Handle* check_handle(lua_State* L, int idx, const char* type, std::string_view c
   }
   if (!h->model || h->model->closed())
     fail(call, ": attempt to use a ", pretty(type), " of a closed model (m:close() was called)");
+  hold_for_call(*h->model);
   return h;
 }
 

@@ -9,7 +9,9 @@
 #include <map>
 #include <optional>
 
+#include "background_run.hpp"
 #include "session.hpp"
+#include "stepping.hpp"
 #include "wrap.hpp"
 
 namespace dda::script {
@@ -117,36 +119,7 @@ int m_gravity(lua_State* L) {
 
 // ---- stepping -----------------------------------------------------------------------------------
 
-struct RunPlan {
-  double t_end = -1;  // run until time ≥ t_end (when ≥ 0)
-  long steps = -1;    // or this many steps (when ≥ 0)
-  long every = 1;     // call the callback every N steps
-  int callback = 0;   // stack index of the callback (0: none)
-};
-
 std::string where_now(const World& w) { return msg("at step ", w.step_count(), ", t = ", w.time(), " s"); }
-
-// ---- checkpoints ----------------------------------------------------------------------------
-
-std::filesystem::path periodic_checkpoint_path(const Session& s, int model) {
-  return s.out_dir / (model <= 1 ? std::string("checkpoint.ckpt") : msg("checkpoint_", model, ".ckpt"));
-}
-
-// --checkpoint-every N | Ts: after a step (and its callback) when due, or
-// `now` (Ctrl-C). The file is replaced atomically: the last one stays whole
-// whatever happens to the next.
-void checkpoint_if_due(lua_State* L, ScriptModel& m, bool now = false) {
-  const Session& s = session(L);
-  if (s.checkpoint_steps <= 0 && s.checkpoint_seconds <= 0) return;
-  const World& w = m.world();
-  const bool due = now || (s.checkpoint_steps > 0 && w.step_count() % s.checkpoint_steps == 0) ||
-                   (s.checkpoint_seconds > 0 && w.time() >= m.last_checkpoint_time + s.checkpoint_seconds);
-  if (!due) return;
-  std::error_code ec;
-  std::filesystem::create_directories(s.out_dir, ec);
-  m.save(periodic_checkpoint_path(s, m.number));
-  m.last_checkpoint_time = w.time();
-}
 
 // dda run --restart: the model the checkpoint was written from (by its
 // number in the run) takes the checkpoint's state at its first stepping
@@ -165,9 +138,9 @@ void restart_if_pending(lua_State* L, ScriptModel& m) {
 // Between steps: stop if Ctrl-C was pressed (worded only then: no string is
 // built in a step loop that goes on), with a checkpoint first when the run
 // writes them.
-void stop_if_interrupted(lua_State* L, ScriptModel& m) {
+void stop_if_interrupted(ScriptModel& m, Stepping* run) {
   if (!interrupt_requested()) return;
-  checkpoint_if_due(L, m, true);
+  if (run) run->checkpoint_now();
   check_interrupt(where_now(m.world()).c_str());
 }
 
@@ -203,14 +176,6 @@ void log_controls_once(lua_State* L, ScriptModel& m) {
   s.log.line(msg("model: ", m.world().block_count(), " blocks; controls:", text));
 }
 
-// The stepping loop shared by m:step, m:run_until and m:run. Lua runs only
-// between steps: load histories inside ScriptModel::step (before
-// World::step), the callback after the step's monitors are written.
-//
-// After a restart the model may stand ahead of the script: a call counts its
-// steps from where the straight run stood when it began (replay_mark), so
-// m:step(n) and m:run{steps = n} end where they ended in the straight run
-// (at once, if that is before the checkpoint), as m:run{time = t} does.
 // Before the first step: the wave model, the functions sampled over the run
 // this call asks for (to its end time, or its steps at the first step's Δt);
 // what it decided goes to the run log, its warnings to stderr too.
@@ -226,43 +191,64 @@ void decide_wave_model_once(lua_State* L, ScriptModel& m, const RunPlan& plan) {
   for (const std::string& warning : wave.warnings) warn(warning);
 }
 
-void run_loop(lua_State* L, ScriptModel& m, const RunPlan& plan) {
+}  // namespace
+
+long begin_stepping_call(lua_State* L, ScriptModel& m, const RunPlan& plan) {
   restart_if_pending(L, m);
-  World& w = m.world();
-  const long s0 = m.replay_mark ? *m.replay_mark : w.step_count();
-  const double t0 = w.time();
-  stop_if_interrupted(L, m);
+  const long s0 = m.replay_mark ? *m.replay_mark : m.world().step_count();
+  stop_if_interrupted(m, nullptr);
   log_controls_once(L, m);
   decide_wave_model_once(L, m, plan);
-  Progress progress(L, t0, plan.t_end >= 0 ? plan.t_end : 0, s0, plan.steps >= 0 ? s0 + plan.steps : 0);
+  return s0;
+}
+
+namespace {
+
+// A stepping call may not begin while a background run holds the model.
+void check_no_background_run(ScriptModel& m, const char* call) {
+  if (m.control().active() && m.control().background())
+    fail(call, ": the model has a background run (", to_string(m.control().state()),
+         "): m:wait() for its end, or m:stop() it first");
+}
+
+// The stepping loop of m:step, m:run_until and m:run, on the Lua thread
+// (m:start runs the same steps on a thread of its own: background_run.cpp).
+// Lua runs only between steps: load histories inside ScriptModel::step
+// (before World::step), the callback after the step's monitors are written.
+// Between steps a live view may take its turn at the model, and pause the
+// run (the loop then waits, holding nothing).
+//
+// After a restart the model may stand ahead of the script: a call counts its
+// steps from where the straight run stood when it began (replay_mark), so
+// m:step(n) and m:run{steps = n} end where they ended in the straight run
+// (at once, if that is before the checkpoint), as m:run{time = t} does.
+void run_loop(lua_State* L, ScriptModel& m, RunPlan plan) {
+  World& w = m.world();
+  const long s0 = begin_stepping_call(L, m, plan);
+  Stepping run(L, 1, m, std::move(plan), s0);
+  const RunPlanView view = run.view(false);
+  Progress progress(L, view.t_start, view.t_end >= 0 ? view.t_end : 0, s0, view.step_end >= 0 ? view.step_end : 0);
+  RunControl& control = m.control();
+  control.begin(view);
+  struct End {
+    RunControl& control;
+    Stepping& run;
+    ~End() { control.end(RunState::Idle, run.where()); }
+  } end{control, run};
   for (;;) {
-    if (plan.steps >= 0 && w.step_count() - s0 >= plan.steps) break;
-    if (plan.t_end >= 0) {
-      // Stop once t reaches t_end (within a millionth of a step: t accumulates Δt).
-      const double slack = 1e-6 * (w.current_dt() > 0 ? w.current_dt() : 0);
-      if (w.time() >= plan.t_end - slack) break;
-    }
-    m.step(L);
-    stop_if_interrupted(L, m);
+    if (!control.wait_between_steps(run.next_start(), interrupt_requested)) break;
+    if (const std::string lag = run.take_lag_warning(); !lag.empty()) warn(lag);
+    control.lock.yield();
+    if (run.done()) break;
+    run.advance(L);
+    stop_if_interrupted(m, &run);
     progress.update(w.time(), w.step_count());
-    const long done = w.step_count() - s0;
-    if (plan.callback && done % plan.every == 0) {
-      lua_pushvalue(L, plan.callback);
-      lua_pushvalue(L, 1);  // the model
-      pcall(L, 1, 1);
-      const bool stop = lua_type(L, -1) == LUA_TBOOLEAN && !lua_toboolean(L, -1);
-      lua_pop(L, 1);
-      if (stop) break;
-      if (m.closed()) fail("m:run: the callback closed the model");
-    }
-    checkpoint_if_due(L, m);
+    if (!run.follow_up(L)) break;
   }
-  // Still ahead of the script: it stands where this call ended in the
-  // straight run (known only for a count of steps).
-  if (m.replay_mark) {
-    const long end = s0 + plan.steps;
-    m.replay_mark = plan.steps >= 0 && w.step_count() > end ? std::optional<long>(end) : std::nullopt;
-  }
+  stop_if_interrupted(m, &run);
+  if (const std::string pace = run.pace_report(); !pace.empty()) warn(pace);
+  session(L).log.line("run: " + run.summary());
+  run.settle_replay_mark();
 }
 
 int push_time_and_steps(lua_State* L, const ScriptModel& m) {
@@ -275,10 +261,11 @@ int push_time_and_steps(lua_State* L, const ScriptModel& m) {
 int m_step(lua_State* L) {
   ScriptModel& m = check_model(L, 1, "m:step");
   check_not_busy(m, "m:step");
+  check_no_background_run(m, "m:step");
   RunPlan plan;
   plan.steps = lua_isnoneornil(L, 2) ? 1 : check_integer(L, 2, "m:step", "argument 1 (number of steps)");
   if (plan.steps < 0) fail("m:step: argument 1 (number of steps) must be zero or positive, got ", plan.steps);
-  run_loop(L, m, plan);
+  run_loop(L, m, std::move(plan));
   return push_time_and_steps(L, m);
 }
 
@@ -286,38 +273,57 @@ int m_step(lua_State* L) {
 int m_run_until(lua_State* L) {
   ScriptModel& m = check_model(L, 1, "m:run_until");
   check_not_busy(m, "m:run_until");
+  check_no_background_run(m, "m:run_until");
   RunPlan plan;
   plan.t_end = check_number(L, 2, "m:run_until", "argument 1 (time)");
   if (plan.t_end < 0) fail("m:run_until: argument 1 (time) must be zero or positive, got ", plan.t_end);
-  run_loop(L, m, plan);
+  run_loop(L, m, std::move(plan));
   return push_time_and_steps(L, m);
 }
 
-// m:run{time = t | steps = n, every = N, callback = f} → t, step
-int m_run(lua_State* L) {
-  ScriptModel& m = check_model(L, 1, "m:run");
-  check_not_busy(m, "m:run");
-  const Options o(L, 2, "m:run", {"time", "steps", "every", "callback"});
+}  // namespace
+
+RunPlan read_run_plan(const Options& o) {
+  lua_State* L = o.state();
+  const char* call = o.call().c_str();
   RunPlan plan;
   if (one_of(o, {"time", "steps"}) == 0) {
     plan.t_end = o.non_negative("time", 0);
   } else {
     plan.steps = o.integer("steps", 0);
-    if (plan.steps < 0) fail("m:run: option 'steps' must be zero or positive, got ", plan.steps);
+    if (plan.steps < 0) fail(call, ": option 'steps' must be zero or positive, got ", plan.steps);
   }
   plan.every = o.integer("every", 1);
-  if (plan.every < 1) fail("m:run: option 'every' must be at least 1, got ", plan.every);
+  if (plan.every < 1) fail(call, ": option 'every' must be at least 1, got ", plan.every);
   if (o.has("callback")) {
     if (o.push("callback") != LUA_TFUNCTION) {
       const std::string t = type_of(L, -1);
       lua_pop(L, 1);
-      fail("m:run: option 'callback' must be a function, got ", t);
+      fail(call, ": option 'callback' must be a function, got ", t);
     }
-    plan.callback = lua_gettop(L);
+    plan.callback = LuaRef(L, -1);
+    lua_pop(L, 1);
   } else if (o.has("every")) {
-    fail("m:run: option 'every' needs a 'callback' to call");
+    fail(call, ": option 'every' needs a 'callback' to call");
   }
-  run_loop(L, m, plan);
+  plan.realtime = o.non_negative("realtime", 0);
+  return plan;
+}
+
+namespace {
+
+// m:run{time = t | steps = n, every = N, callback = f, realtime = r, background = false} → t, step
+int m_run(lua_State* L) {
+  ScriptModel& m = check_model(L, 1, "m:run");
+  check_not_busy(m, "m:run");
+  check_no_background_run(m, "m:run");
+  const Options o(L, 2, "m:run", {"time", "steps", "every", "callback", "realtime", "background"});
+  RunPlan plan = read_run_plan(o);
+  if (o.boolean("background", false)) {
+    start_background_run(L, 1, m, std::move(plan));
+    return 0;
+  }
+  run_loop(L, m, std::move(plan));
   return push_time_and_steps(L, m);
 }
 
@@ -480,6 +486,8 @@ int m_contact_summary(lua_State* L) {
 int m_close(lua_State* L) {
   auto* box = static_cast<ModelBox*>(luaL_testudata(L, 1, kModelType));
   if (!box || !box->model) fail("m:close: expected a model as self, got ", type_of(L, 1));
+  if (on_stepping_thread()) fail("m:close: not from a callback of a background run (it would wait for itself)");
+  hold_for_call(*box->model);
   check_not_busy(*box->model, "m:close");
   box->model->close();
   return 0;
@@ -499,9 +507,15 @@ int m_tostring(lua_State* L) {
     lua_pushliteral(L, "dda.Model (closed)");
     return 1;
   }
-  const World& w = box->model->world();
-  lua_pushfstring(L, "dda.Model (%d blocks, %d contacts, step %d, t = %f s)", static_cast<int>(w.block_count()),
-                  static_cast<int>(w.contacts().size()), static_cast<int>(w.step_count()), w.time());
+  int blocks, contacts, step;
+  double t;
+  {
+    std::lock_guard hold(box->model->control().lock);  // between two steps of a background run
+    const World& w = box->model->world();
+    blocks = static_cast<int>(w.block_count()), contacts = static_cast<int>(w.contacts().size());
+    step = static_cast<int>(w.step_count()), t = w.time();
+  }
+  lua_pushfstring(L, "dda.Model (%d blocks, %d contacts, step %d, t = %f s)", blocks, contacts, step, t);
   return 1;
 }
 
@@ -513,7 +527,10 @@ void register_model(lua_State* L) {
       {"gravity", guarded<m_gravity>, "m:gravity(gx, gy)"},
       {"step", guarded<m_step>, "m:step([n = 1]) → t, step"},
       {"run_until", guarded<m_run_until>, "m:run_until(t) → t, step"},
-      {"run", guarded<m_run>, "m:run{time = t | steps = n, every = N, callback = f} → t, step"},
+      {"run", guarded<m_run>,
+       "m:run{time = t | steps = n, every = N, callback = f, realtime = r, background = false} → t, step: steps the "
+       "model (realtime = 1: paced to the wall clock, r: r simulated seconds per second; background = true: as "
+       "m:start)"},
       {"save", guarded<m_save>,
        "m:save(file) → path: a checkpoint of the whole model (blocks, contacts, loads, the solver's state), from "
        "which dda.load(file) or dda run --restart continues bit for bit. A relative name goes into the output "

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstring>
 #include <fstream>
+#include <mutex>
 #include <system_error>
 
 #include "session.hpp"
@@ -276,8 +277,13 @@ int mon_tostring(lua_State* L) {
     lua_pushliteral(L, "dda.Monitor (invalid)");
     return 1;
   }
-  const Monitor& mon = h->model->monitor(h->id);
-  lua_pushfstring(L, "dda.Monitor '%s' (%d rows)", mon.name.c_str(), static_cast<int>(mon.times.size()));
+  std::string text;
+  {
+    std::lock_guard hold(h->model->control().lock);  // between two steps of a background run
+    const Monitor& mon = h->model->monitor(h->id);
+    text = msg("dda.Monitor '", mon.name, "' (", mon.times.size(), " rows)");
+  }
+  lua_pushstring(L, text.c_str());
   return 1;
 }
 

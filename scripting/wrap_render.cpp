@@ -86,13 +86,24 @@ render::Rgb read_rgb(const Options& o, const char* key) {
   "field", "width", "height", "colormap", "range", "view", "magnify", "edges", "edge_width", "contacts", "monitors", \
       "velocity", "arrow_scale", "colorbar", "info", "title", "background", "supersample", "scale", "joints"
 
-render::FrameOptions read_frame_options(const Options& o) {
+// `grow` (sequences only): set when range = "grow" asks for a range that
+// widens with the data; nullptr refuses it (a single frame).
+render::FrameOptions read_frame_options(const Options& o, bool* grow = nullptr) {
   render::FrameOptions f;
   if (o.has("field")) f.field = render::parse_field(o.string("field"));
   f.width = static_cast<int>(o.integer("width", f.width));
   f.height = static_cast<int>(o.integer("height", f.height));
   if (o.has("colormap")) f.colormap = render::parse_colormap(o.string("colormap"));
-  if (o.has("range")) {
+  const bool range_named = o.push("range") == LUA_TSTRING;
+  lua_pop(o.state(), 1);
+  if (range_named) {
+    const std::string r = o.string("range");
+    if (r == "grow" && grow)
+      *grow = true;
+    else if (r != "frame")
+      fail(o.call(), ": option 'range' must be {min, max}", grow ? ", \"frame\" or \"grow\"" : " or \"frame\"",
+           ", got \"", r, "\"");
+  } else if (o.has("range")) {
     const Vec2 r = o.point("range");
     if (!(r.y() > r.x())) fail(o.call(), ": option 'range' must be {min, max} with min < max");
     f.range = render::ValueRange{r.x(), r.y()};
@@ -141,7 +152,7 @@ int m_frames(lua_State* L) {
                   {"folder", "every", "every_time", "prefix", "digits", "on_error", "fixed", "steps", "times", "movie",
                    "fps", DDA_FRAME_KEYS});
   render::SequenceOptions so;
-  so.frame = read_frame_options(o);
+  so.frame = read_frame_options(o, &so.grow_range);
   so.folder = in_out_dir(L, o.string("folder", "frames"));
   so.prefix = o.string("prefix", "");
   so.every_steps = o.integer("every", 0);
@@ -395,9 +406,10 @@ void register_render(lua_State* L) {
        "magnify, contacts, joints, velocity, arrow_scale, scale, monitors, colorbar, info, title, ...} → path written"},
       {"frames", guarded<m_frames>,
        "m:frames{folder = \"frames\", every = N | every_time = dt, steps = {first, last}, times = {t0, t1}, movie = "
-       "\"film.mp4\", fps = 30, fixed = true, prefix, digits, on_error = \"stop\" | \"continue\", ...frame options} → "
-       "Frames: a numbered PNG sequence during the run; view, colour range and arrow scale fixed from the first frame "
-       "(fixed = false: each frame its own); a movie at the end when ffmpeg is on the PATH"},
+       "\"film.mp4\", fps = 30, fixed = true, range = \"frame\" | \"grow\" | {min, max}, prefix, digits, on_error = "
+       "\"stop\" | \"continue\", ...frame options} → Frames: a numbered PNG sequence during the run; view and arrow "
+       "scale fixed from the first frame (fixed = false: each frame its own); colours by each frame's own range "
+       "unless one is declared (\"grow\": the widest so far); a movie at the end when ffmpeg is on the PATH"},
       {}};
   add_model_methods(L, model_methods);
   static const Method methods[] = {

@@ -22,7 +22,11 @@ packages=(g++ cmake make pkg-config libeigen3-dev libtbb-dev liblua5.4-dev
           # without it a bitmap font spells Greek letters with Latin ones.
           fonts-dejavu-core
           # Tests: VTK's own reader checks the ParaView (VTU/PVD) output.
-          python3-vtk9)
+          python3-vtk9
+          # Run: the live view's HTTP server (dda run/console --live PORT).
+          libcpp-httplib-dev
+          # Tests: the live view in a real browser (headless Chromium via chromedriver).
+          chromium chromium-driver)
 if [ "${WITH_FFMPEG:-0}" = 1 ]; then packages+=(ffmpeg); fi
 missing=()
 for p in "${packages[@]}"; do

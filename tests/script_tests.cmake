@@ -226,3 +226,14 @@ foreach(law holding shi)
            WORKING_DIRECTORY ${PROJECT_SOURCE_DIR})
   set_tests_properties(${name} PROPERTIES LABELS scripts TIMEOUT 120)
 endforeach()
+# The same hashes whatever BLAS kernels the machine's OpenBLAS would pick
+# (OPENBLAS_CORETYPE forces them, as another CPU would): the CHOLMOD factor
+# of the walls calls the engine's own dense kernels (solver/portable_blas.hpp).
+foreach(core Prescott Haswell SkylakeX Zen)
+  set(name script.state_hashes_blas_${core})
+  add_test(NAME ${name}
+           COMMAND bash -c "diff <(grep -v '^#' \"$2\") <(\"$1\" run scripts/bench/state_hashes.lua --quiet --out \"$3\" | grep -v '^progress')"
+                   _ $<TARGET_FILE:dda> bench/state_hashes.txt ${DDA_SCRIPT_TEST_OUT}/${name}
+           WORKING_DIRECTORY ${PROJECT_SOURCE_DIR})
+  set_tests_properties(${name} PROPERTIES LABELS scripts TIMEOUT 120 ENVIRONMENT OPENBLAS_CORETYPE=${core})
+endforeach()

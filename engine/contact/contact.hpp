@@ -24,6 +24,11 @@ struct Contact {
   ContactState state = ContactState::Open;
   // Intact: cohesion and tensile strength still act. Lost for good on failure.
   bool intact = false;
+  // Bonded: intact when first found (a joint touching before the first
+  // step). Never changes: a bonded contact that is no longer intact is a
+  // joint that broke (if its material had strength to lose); one made later
+  // never was a joint.
+  bool bonded = false;
   // Share of joint length this contact stands for (cohesion and tension act
   // over it): half the overlap of two facing edges; 0 at a corner contact.
   double length = 0;
@@ -58,7 +63,7 @@ struct Contact {
   // What a checkpoint holds (core/archive.hpp): every field.
   template <class Archive>
   void fields(Archive& ar) {
-    ar(vblock, eblock, vertex, edge, joint, state, intact, length, scale, ref_param, ref_valid, slide_sign,
+    ar(vblock, eblock, vertex, edge, joint, state, intact, bonded, length, scale, ref_param, ref_valid, slide_sign,
        friction_normal, friction_age, normal_force, shear_force, penetration);
   }
 };

@@ -90,12 +90,15 @@ bool ContactDetection::detect(const Blocks& blocks, double range, std::vector<Co
     const auto it = std::lower_bound(order.begin(), order.end(), c,
                                      [&](int x, const Contact& key) { return identity_less(contacts[x], key); });
     const bool known = it != order.end() && same_identity(contacts[*it], c);
-    if (known) set_iteration_state(c, iteration_state(contacts[*it]));  // (penetration: set below)
+    if (known) {
+      set_iteration_state(c, iteration_state(contacts[*it]));  // (penetration: set below)
+      c.bonded = contacts[*it].bonded;
+    }
     const ContactOffsets& k = linearise(i, c);
     if (!known) {
       const bool touching = k.d0 >= -1e-9 * k.edge_length;
       c.state = touching ? ContactState::Locked : ContactState::Open;
-      c.intact = touching && first_detection_;
+      c.intact = c.bonded = touching && first_detection_;
     }
     c.penetration = k.d0;
   });

@@ -9,22 +9,20 @@
 #include "core/error.hpp"
 #include "core/parallel.hpp"
 #include "solver/block_sparse_matrix.hpp"
+#include "solver/portable_blas.hpp"
 
 namespace dda {
 
 namespace {
 
-// One BLAS thread for the process (see the header: determinism), and no
-// OpenMP teams: CHOLMOD opens an OpenMP parallel region per large supernode,
-// whose threads then spin and sleep against the step's TBB threads (on two
-// cores a fifth of the factorisation's time went to waking them). Looked up
-// at run time so that any BLAS links; one other than OpenBLAS is left as it
-// is (the reference BLAS and BLIS's default build are single-threaded).
+// No OpenMP teams: CHOLMOD opens an OpenMP parallel region per large
+// supernode, whose threads then spin and sleep against the step's TBB threads
+// (on two cores a fifth of the factorisation's time went to waking them).
+// Looked up at run time, so that a CHOLMOD built without OpenMP links too.
 void use_one_thread_inside() {
   static std::once_flag once;
   std::call_once(once, [] {
     using SetInt = void (*)(int);
-    if (auto set = reinterpret_cast<SetInt>(dlsym(RTLD_DEFAULT, "openblas_set_num_threads"))) set(1);
     // Maximum active levels 0: every parallel region runs on its caller's thread alone.
     if (auto set = reinterpret_cast<SetInt>(dlsym(RTLD_DEFAULT, "omp_set_max_active_levels"))) set(0);
   });
@@ -33,6 +31,14 @@ void use_one_thread_inside() {
 }  // namespace
 
 CholmodFactor::CholmodFactor() : common_(new cholmod_common) {
+  // The factor's dense kernels are the engine's own (portable_blas.hpp): the
+  // same bits on every machine. A program that links the engine in a way
+  // that leaves CHOLMOD calling another BLAS is refused, not run with bits
+  // that depend on the machine.
+  if (!portable_blas_bound())
+    throw Error(
+        "CHOLMOD's BLAS calls do not reach the engine's own kernels (solver/portable_blas.hpp): link the "
+        "engine statically into the program, or use solver = \"pcg\"");
   use_one_thread_inside();
   cholmod_start(common_);
   common_->print = 0;  // failures are reported through the return values

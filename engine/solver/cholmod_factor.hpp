@@ -12,11 +12,11 @@
 //     since the stored pattern holds every pair the list couples, open
 //     contacts included. factorise() only refills the values and redoes the
 //     numeric factor.
-//   * Determinism: CHOLMOD's supernodal kernels call the BLAS, and a
-//     multithreaded BLAS may split sums in ways that depend on its threads.
-//     The first factor asks OpenBLAS (when it is the BLAS loaded) for one
-//     thread; CHOLMOD itself runs on the caller's thread. Everything else is
-//     fixed-order, so the factor's bits do not depend on the step's threads.
+//   * Determinism: the supernodal factor's dense kernels are the engine's own
+//     (portable_blas.hpp), not the system BLAS's, whose kernels differ by
+//     CPU; CHOLMOD runs on the caller's thread (no OpenMP teams). Everything
+//     else is fixed-order, so the factor's bits depend neither on the step's
+//     threads nor on the machine.
 #include <cstddef>
 #include <vector>
 

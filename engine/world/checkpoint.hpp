@@ -34,10 +34,11 @@ namespace dda {
 // 1: the first format. 2: the contact search's watched aligned edges. 3: the
 // contacts' lagged friction normal force (friction_lag). 4: the meshed
 // solver's kept factors. 5: the energy budget's impact term (the landing
-// law). 6: the age of the contacts' lagged friction. 7: the wave model (its
-// decision, the in-place meshing's map, the joints' lengths, the boundaries'
-// edges and the edge targets).
-inline constexpr std::uint32_t kCheckpointFormat = 7;
+// law). 6: the age of the contacts' lagged friction. 7: whether a contact
+// was a bonded joint when first found. 8: the wave model (its decision, the
+// in-place meshing's map, the joints' lengths, the boundaries' edges and the
+// edge targets).
+inline constexpr std::uint32_t kCheckpointFormat = 8;
 
 // The World's state and `extra` (bytes its owner keeps beside it: the Lua
 // layer's loads and monitors), as a checkpoint file's bytes.

@@ -81,6 +81,8 @@ JointMaterial& World::joint_material(int id) {
   return s_.joints[id];
 }
 
+const JointMaterial& World::joint_material(int id) const { return const_cast<World*>(this)->joint_material(id); }
+
 BlockId World::check(BlockId b) const {
   if (b < 0 || static_cast<std::size_t>(b) >= block_count()) throw Error(msg("no block ", b));
   return b;

@@ -35,6 +35,7 @@ class World {
   int add_joint_material(const JointMaterial& m);
   RockMaterial& rock_material(int id);
   JointMaterial& joint_material(int id);
+  const JointMaterial& joint_material(int id) const;
   int rock_material_count() const { return static_cast<int>(s_.rocks.size()); }
   int joint_material_count() const { return static_cast<int>(s_.joints.size()); }
 

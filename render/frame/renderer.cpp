@@ -49,6 +49,8 @@ struct Plan {
   PixelRect panel;   // colour bar + legend area (right)
   PixelRect legend;  // contact legend (inside the panel)
   std::vector<double> values;
+  std::string max_text, min_text;  // the frame's extremes under the colour bar
+  int arrow = 0;                   // height of the bar's arrow ends (0: no set range)
 };
 
 ValueRange auto_range(const std::vector<double>& values, const FieldInfo& info) {
@@ -64,6 +66,14 @@ ValueRange auto_range(const std::vector<double>& values, const FieldInfo& info) 
   }
   if (!(hi > 0)) hi = unit;
   return {0, hi};
+}
+
+// The smallest and largest finite value (both 0 when there is none).
+ValueRange data_extremes(const std::vector<double>& values) {
+  double lo = std::numeric_limits<double>::infinity(), hi = -lo;
+  for (double v : values)
+    if (std::isfinite(v)) lo = std::min(lo, v), hi = std::max(hi, v);
+  return lo <= hi ? ValueRange{lo, hi} : ValueRange{0, 0};
 }
 
 Box fit_view(const Scene& scene, double magnify) {
@@ -103,6 +113,10 @@ Plan make_plan(const Scene& scene, const FrameOptions& o) {
   p.values.resize(n);
   for (std::size_t b = 0; b < n; ++b) p.values[b] = field_value(scene, b, o.field);
   L.range = o.range ? *o.range : auto_range(p.values, *p.info);
+  L.data = data_extremes(p.values);
+  L.above = o.range && L.data.max > L.range.max;
+  L.below = o.range && L.data.min < L.range.min;
+  L.range_note = !o.range ? "range: frame" : o.range_grows ? "range: grows" : "range: fixed";
 
   p.text = std::clamp(o.height / 36.0f, 10.0f, 32.0f);
   p.margin = static_cast<int>(std::lround(p.text * 0.6));
@@ -120,7 +134,12 @@ Plan make_plan(const Scene& scene, const FrameOptions& o) {
     const int ramp_w = static_cast<int>(std::lround(p.text * 1.1));
     panel_w = ramp_w + static_cast<int>(std::lround(p.text * 0.7)) + label_w + m;
     const std::string unit = p.ticks.multiplier.empty() ? p.info->unit : p.ticks.multiplier + " " + p.info->unit;
-    panel_w = std::max({panel_w, text_width(p.info->label, p.text), text_width("[" + unit + "]", p.text)});
+    p.max_text = "max " + format_number(L.data.max * scale, 3);
+    p.min_text = "min " + format_number(L.data.min * scale, 3);
+    panel_w =
+        std::max({panel_w, text_width(p.info->label, p.text), text_width("[" + unit + "]", p.text),
+                  text_width(p.max_text, p.text), text_width(p.min_text, p.text), text_width(L.range_note, p.text)});
+    if (o.range) p.arrow = ramp_w;
   }
   if (o.show_contacts) panel_w = std::max(panel_w, th + m / 2 + text_width("sliding", p.text));
   if (o.show_joint_state) panel_w = std::max(panel_w, th + m / 2 + text_width("failed joint", p.text));
@@ -139,9 +158,11 @@ Plan make_plan(const Scene& scene, const FrameOptions& o) {
     ramp_bottom = p.legend.y - m;
   }
   if (bar) {
-    const int ramp_top = top + 2 * th + m / 2;
+    // Under the ramp: max, min and how the range was chosen (three lines).
+    const int ramp_top = top + 2 * th + m / 2 + p.arrow;
+    const int below_ramp = 3 * th + m / 2 + p.arrow;
     L.colorbar = {p.panel.x, ramp_top, static_cast<int>(std::lround(p.text * 1.1)),
-                  std::max(2, ramp_bottom - ramp_top - th / 2)};
+                  std::max(2, ramp_bottom - ramp_top - th / 2 - below_ramp)};
   }
 
   L.view = square_pixels(o.view ? *o.view : fit_view(scene, o.magnify), L.model);
@@ -150,14 +171,6 @@ Plan make_plan(const Scene& scene, const FrameOptions& o) {
 }
 
 }  // namespace
-
-bool field_is_zero(const Scene& scene, Field field) {
-  for (std::size_t b = 0; b < scene.block_count(); ++b) {
-    const double v = field_value(scene, b, field);
-    if (std::isfinite(v) && v != 0) return false;
-  }
-  return true;
-}
 
 Box frame_view(const Scene& scene, double magnify) { return fit_view(scene, magnify); }
 
@@ -281,7 +294,7 @@ void Renderer::Impl::draw_gl(const Scene& scene, const FrameOptions& o, const Pl
   failed_xy.clear();
   if (o.show_joint_state)
     for (const ContactMark& c : scene.contacts) {
-      if (c.intact || c.eblock < 0) continue;
+      if (!c.failed || c.eblock < 0) continue;
       const int v0 = scene.offsets[c.eblock], nv = scene.offsets[c.eblock + 1] - v0;
       push(failed_xy, scene.drawn_vertex(c.eblock, v0 + c.edge, magnify));
       push(failed_xy, scene.drawn_vertex(c.eblock, v0 + (c.edge + 1) % nv, magnify));
@@ -488,6 +501,21 @@ void draw_scale(Image& img, const FrameOptions& o, const Plan& p) {
   }
 }
 
+// An arrow end of the colour bar `r` (above it when `up`), `h` pixels
+// tall, in the colour of the values beyond that end.
+void draw_arrow_end(Image& img, const PixelRect& r, int h, bool up, Rgb color) {
+  const double cx = r.x + r.w / 2.0;
+  for (int j = 0; j < h; ++j) {
+    const double half = r.w / 2.0 * (h - j) / h;  // row j from the bar outward
+    const int y = up ? r.y - 2 - j : r.bottom() + 1 + j;
+    img.fill_rect({static_cast<int>(std::lround(cx - half)), y, static_cast<int>(std::lround(2 * half)), 1}, color);
+  }
+  const double base = up ? r.y - 1.5 : r.bottom() + 1.5, tip = up ? r.y - 2.0 - h : r.bottom() + 1.0 + h;
+  const PixelRect all{0, 0, img.width(), img.height()};
+  stroke_line(img, {r.x - 0.5, base}, {cx, tip}, 1, {90, 90, 90}, all);
+  stroke_line(img, {r.x + r.w + 0.5, base}, {cx, tip}, 1, {90, 90, 90}, all);
+}
+
 void draw_overlay(Image& img, const Scene& scene, const FrameOptions& o, const Plan& p) {
   const FrameLayout& L = p.layout;
   const int th = text_height(p.text), m = p.margin;
@@ -518,6 +546,26 @@ void draw_overlay(Image& img, const Scene& scene, const FrameOptions& o, const P
       const int y = r.y + static_cast<int>(std::lround((hi - v) / (hi - lo) * (r.h - 1)));
       img.fill_rect({r.right() + 1, y, tick, 1}, {60, 60, 60});
       draw_text(img, r.right() + tick + m / 2, y, p.ticks.labels[i], {p.text, kTextColor, Align::Start, Align::Center});
+    }
+    if (L.above) draw_arrow_end(img, r, p.arrow, true, color_at(L.colormap, 1));
+    if (L.below) draw_arrow_end(img, r, p.arrow, false, color_at(L.colormap, 0));
+    // The frame's own min and max: dark pointers left of the ramp (beside the
+    // arrow end when beyond the range), the ramp's colours left whole.
+    const int size = std::max(3, m - 2);
+    for (const double v : {L.data.min, L.data.max}) {
+      const double f = (v * scale - lo) / (hi - lo);
+      const int y = f > 1   ? r.y - 2 - p.arrow / 2
+                    : f < 0 ? r.bottom() + 1 + p.arrow / 2
+                            : r.y + static_cast<int>(std::lround((1 - f) * (r.h - 1)));
+      for (int j = -size / 2; j <= size / 2; ++j) {
+        const int w = size - 2 * std::abs(j);  // a triangle pointing at the ramp
+        img.fill_rect({r.x - 2 - size, y + j, w, 1}, {0, 0, 0});
+      }
+    }
+    int y = r.bottom() + p.arrow + m / 2;
+    for (const std::string* line : {&p.max_text, &p.min_text, &L.range_note}) {
+      draw_text(img, r.x, y, *line, ts);
+      y += th;
     }
   }
 

@@ -33,8 +33,13 @@ struct FrameOptions {
   std::optional<ColorMap> colormap;  // default: CoolWarm for signed fields, Viridis otherwise
   // Fixed colour range in SI units; without it the range comes from the
   // frame: ±max|value| for signed fields (so zero is the middle colour),
-  // [0, max] for magnitudes. Values outside a fixed range get the end colours.
+  // [0, max] for magnitudes. Values outside a fixed range get the end colours
+  // and the colour bar an arrow at the end they pass.
   std::optional<ValueRange> range;
+  // Said under the colour bar beside the frame's true min and max: "range:
+  // fixed" for a set range, "range: grows" when it is a sequence's widest
+  // range so far (set by FrameSequence), "range: frame" without one.
+  bool range_grows = false;
   // World window (m) to show; without it, the model's bounds plus a 4 % margin.
   // The window is widened in x or y to keep the pixels square.
   std::optional<Box> view;
@@ -51,9 +56,9 @@ struct FrameOptions {
   bool show_velocity = false;  // velocity arrows at block centroids, with a reference arrow
   double arrow_scale = 0;      // arrow length (m) per (m/s); 0 → longest arrow = 6 % of the view
   bool show_scale = true;      // a scale bar (and the magnification when magnify ≠ 1)
-  // Joints whose contacts have failed (lost cohesion and tensile strength,
-  // or contacts made later, which never had any) drawn in red over the edges;
-  // intact ones stay as the edges are drawn.
+  // Joints that broke (ContactMark::failed: bonded at the start, with
+  // cohesion or tensile strength, and lost it since) drawn in red over the
+  // edges; every other edge stays as the edges are drawn.
   bool show_joint_state = false;
   Rgb failed_joint_color{215, 25, 28};
   bool show_colorbar = true;  // colour bar with ticks, field name and unit
@@ -74,6 +79,11 @@ struct FrameLayout {
   PixelRect colorbar;  // the colour ramp: top row = range.max, bottom row = range.min (empty if hidden)
   Box view;            // world window mapped onto `model` (after square-pixel widening)
   ValueRange range;    // colour range actually used (SI)
+  // The frame's own extremes (SI, finite values only; both 0 without blocks),
+  // marked on the colour bar and printed under it, whatever the range.
+  ValueRange data;
+  bool below = false, above = false;  // values beyond a set range: arrow ends on the bar
+  std::string range_note;             // "range: frame" | "range: fixed" | "range: grows"
   ColorMap colormap = ColorMap::Viridis;
   double arrow_scale = 0;  // velocity arrows: m of arrow per m/s (0: none drawn)
 
@@ -118,9 +128,6 @@ class Renderer {
 // not set: ±max|value| for signed fields, [0, max] for magnitudes (SI units;
 // ±1 or [0, 1] display unit when every value is zero).
 ValueRange frame_range(const Scene& scene, Field field);
-// Whether every block's value of the field is zero (or not finite): a frame
-// with nothing to fix a colour range from.
-bool field_is_zero(const Scene& scene, Field field);
 // The world window a frame takes from its scene when FrameOptions::view is
 // not set: the model's bounds as drawn (magnified) plus a 4 % margin.
 Box frame_view(const Scene& scene, double magnify);

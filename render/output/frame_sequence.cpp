@@ -119,21 +119,17 @@ void FrameSequence::capture(Scene scene) {
   const long step = scene.step;
   const double time = scene.time;
   FrameOptions frame = options_.frame;
-  bool wait = false;  // for the fixed colour range or arrow scale
+  bool wait = false;  // for the fixed arrow scale
   if (options_.grow_range && !frame.range && frame.field != Field::None) {
     const ValueRange r = frame_range(scene, frame.field);
     grown_ = grown_ ? ValueRange{std::min(grown_->min, r.min), std::max(grown_->max, r.max)} : r;
     frame.range = grown_;
+    frame.range_grows = true;
   }
   if (options_.fixed) {
     if (!frame.view) {
       if (!fixed_view_) fixed_view_ = frame_view(scene, frame.magnify);
       frame.view = fixed_view_;
-    }
-    if (!frame.range && frame.field != Field::None) {
-      if (!fixed_range_ && !field_is_zero(scene, frame.field)) fixed_range_ = frame_range(scene, frame.field);
-      frame.range = fixed_range_;
-      wait = !fixed_range_;
     }
     if (frame.show_velocity && frame.arrow_scale == 0) {
       if (fixed_arrows_ == 0) fixed_arrows_ = auto_arrow_scale(scene, *frame.view);
@@ -160,13 +156,12 @@ void FrameSequence::submit(Scene scene, FrameOptions frame, int index) {
   }
 }
 
-// Frames that waited: with the range and arrow scale now fixed (or, at the
-// end of a sequence that never got them, with their own).
+// Frames that waited: with the arrow scale now fixed (or, at the end of a
+// sequence that never got one, with their own).
 void FrameSequence::release_pending() {
   std::vector<Pending> pending;
   pending.swap(pending_);
   for (Pending& p : pending) {
-    if (!p.frame.range && !options_.frame.range) p.frame.range = fixed_range_;
     if (p.frame.show_velocity && p.frame.arrow_scale == 0) p.frame.arrow_scale = fixed_arrows_;
     submit(std::move(p.scene), std::move(p.frame), p.index);
   }

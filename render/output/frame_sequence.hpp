@@ -47,18 +47,21 @@ struct SequenceOptions {
   double every_time = 0;  // a frame each time simulated time passes a multiple of every_time (s)
                           // (neither set → a frame at every call; both set → dda::Error)
   FrameOptions frame;     // what each frame shows
-  // Animation-safe by default: what frame.view, frame.range and
-  // frame.arrow_scale leave open is fixed for the whole sequence, so a block
-  // that falls is seen to fall and a colour keeps its meaning:
+  // Animation-safe by default: what frame.view and frame.arrow_scale leave
+  // open is fixed for the whole sequence, so a block that falls is seen to
+  // fall and arrows compare across frames:
   //  - the view from the first frame (the model's bounds then, plus a margin);
-  //  - the colour range from the first frame whose field is not zero
-  //    everywhere (earlier frames wait for it: an all-zero frame has nothing
-  //    to take a range from), ±max|value| or [0, max] as for one frame;
-  //  - the arrow scale likewise, from the first frame in which a block moves.
-  // Off (fixed = false): each frame fits its own view, range and arrows.
+  //  - the arrow scale from the first frame in which a block moves (earlier
+  //    frames wait for it).
+  // Off (fixed = false): each frame fits its own view and arrows.
+  // The colour range is never taken from one frame for the others (a range
+  // fixed early saturates once the motion grows, and misleads): without
+  // frame.range each frame colours by its own range ("range: frame" under
+  // the bar, beside the frame's true min and max); frame.range declares a
+  // fixed one ("range: fixed", arrow ends where values pass it).
   bool fixed = true;
-  // Instead of a range fixed from one frame: the range only ever widens over
-  // the sequence (the union of every frame's own range so far).
+  // Without frame.range: the range only ever widens over the sequence (the
+  // union of every frame's own range so far; "range: grows").
   bool grow_range = false;
   // The window frames are taken in: steps [from_step, to_step] (to_step < 0:
   // no end) and times [from_time, to_time] (s; to_time < 0: no end). With
@@ -97,8 +100,7 @@ class FrameSequence {
   void capture(Scene scene);
 
   // Waits for every queued frame to be written; reports errors per on_error.
-  // Frames still waiting for a colour range are drawn with the range of
-  // their own (all-zero) field.
+  // Frames still waiting for an arrow scale are drawn with their own.
   void flush();
 
   // flush(), then the movie (once; later calls do nothing). Returns the movie
@@ -128,14 +130,13 @@ class FrameSequence {
   int next_index_ = 0;
   std::optional<ValueRange> grown_;
   std::optional<Box> fixed_view_;
-  std::optional<ValueRange> fixed_range_;
   double fixed_arrows_ = 0;
   struct Pending {
     Scene scene;
     FrameOptions frame;
     int index;
   };
-  std::vector<Pending> pending_;  // frames waiting for the fixed range or arrow scale
+  std::vector<Pending> pending_;  // frames waiting for the fixed arrow scale
   bool finished_ = false;
   long last_step_ = -1;
   double next_time_ = 0;

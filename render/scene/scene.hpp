@@ -26,11 +26,14 @@ struct ContactMark {
   std::int32_t vertex = -1;
   ContactState state = ContactState::Open;
   // The edge it touches (edge `edge` of block `eblock`; -1: not known) and
-  // whether the joint there is intact (keeps its cohesion and tensile
-  // strength) or has failed (or was never a joint: a contact made later).
+  // whether the joint there has failed: it was bonded when the run began
+  // (touching before the first step, on a joint material with cohesion or
+  // tensile strength) and has since lost that strength. A cohesionless joint
+  // has nothing to lose and a contact made later never was a joint: neither
+  // is failed.
   BlockId eblock = -1;
   std::int32_t edge = -1;
-  bool intact = true;
+  bool failed = false;
 };
 
 struct MonitorMark {

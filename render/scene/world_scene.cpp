@@ -67,8 +67,11 @@ Scene snapshot(const World& world, bool with_contacts) {
   }
   if (with_contacts) {
     s.contacts.reserve(world.contacts().size());
-    for (const Contact& c : world.contacts())
-      s.contacts.push_back({c.vblock, c.vertex, c.state, c.eblock, c.edge, c.intact});
+    for (const Contact& c : world.contacts()) {
+      const JointMaterial& joint = world.joint_material(c.joint);
+      const bool had_strength = joint.cohesion > 0 || joint.tensile_strength > 0;
+      s.contacts.push_back({c.vblock, c.vertex, c.state, c.eblock, c.edge, c.bonded && !c.intact && had_strength});
+    }
   }
   s.time = world.time();
   s.step = world.step_count();

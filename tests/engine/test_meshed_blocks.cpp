@@ -791,7 +791,7 @@ JointedMeshedRun jointed_meshed_bar(MeshPreconditioning preconditioning, int thr
 TEST(MeshedBlocks, MeshFactorsSolveToTheSameAnswerInFewerIterations) {
   const JointedMeshedRun factor = jointed_meshed_bar(MeshPreconditioning::BlockFactor, 0);
   const JointedMeshedRun jacobi = jointed_meshed_bar(MeshPreconditioning::NodeJacobi, 0);
-  double sigma_difference = 0, sigma_peak = 0, moved = 0, centroid_difference = 0;
+  double sigma_difference = 0, sigma_peak = 0, centroid_difference = 0;
   for (std::size_t n = 0; n < factor.sigma.size(); ++n) {
     sigma_difference = std::max(sigma_difference, std::abs(factor.sigma[n] - jacobi.sigma[n]));
     sigma_peak = std::max(sigma_peak, std::abs(jacobi.sigma[n]));

@@ -262,6 +262,7 @@ TEST(Sequence, GrowingRangeKeepsColoursSteady) {
   FrameOptions o = small_frame();
   o.field = Field::SigmaXX;
   o.range = ValueRange{-2e6, 2e6};
+  o.range_grows = true;  // said under the bar: "range: grows"
   const Frame want = r.render(quieter, o);
   // Compare the PNG written by the sequence with a frame rendered with the fixed range.
   std::ifstream in(seq.frame_path(1), std::ios::binary);

@@ -1,9 +1,9 @@
 // Animation-safe sequences: a block falling 4.9 m must be seen to fall (the
 // view is fixed from the first frame, not re-fitted to the moving block) and
-// the colour bar must read the same in every frame (the range is fixed from
-// the first frame that has a non-zero field; the all-zero first frame waits
-// for it). The same frames with `fixed = false` re-fit, which the checks
-// must notice: the test can fail.
+// a declared colour range must read the same in every frame (its ticks and
+// labels; the marks of each frame's own min and max move). The same frames
+// with `fixed = false` and no declared range re-fit, which the checks must
+// notice: the test can fail.
 #include <gtest/gtest.h>
 #include <unistd.h>
 
@@ -65,10 +65,13 @@ Png load(const fs::path& p) {
 
 const double kTimes[] = {0, 0.4, 0.8};  // drops 0, 0.78 m, 3.14 m
 
+constexpr ValueRange kDeclared{0, 8};  // m/s: the fall reaches 7.8
+
 std::vector<Png> run_sequence(const fs::path& dir, bool fixed) {
   SequenceOptions so;
   so.folder = dir;
   so.fixed = fixed;
+  if (fixed) so.frame.range = kDeclared;
   so.frame.field = Field::Velocity;
   so.frame.width = 320, so.frame.height = 240;
   {
@@ -85,22 +88,21 @@ std::vector<Png> run_sequence(const fs::path& dir, bool fixed) {
   return out;
 }
 
-// The layout every fixed frame shares: the first frame's view, the range of
-// the first frame that moves.
+// The layout every fixed frame shares: the first frame's view, the
+// declared range.
 FrameLayout fixed_layout() {
   FrameOptions o;
   o.field = Field::Velocity;
   o.width = 320, o.height = 240;
   o.view = frame_view(falling(0, 0), 1);
-  o.range = frame_range(falling(kTimes[1], 10), Field::Velocity);
+  o.range = kDeclared;
   return Renderer().render(falling(kTimes[1], 10), o).layout;
 }
 
-// The colour bar with its ticks and labels: the panel right of the model,
-// below the top line (which carries the time).
+// The colour bar's ticks and their labels: right of the ramp, over its height.
 bool same_colour_bar(const Png& a, const Png& b, const FrameLayout& L) {
-  for (int y = L.model.y; y < L.height; ++y)
-    for (int x = L.model.right() + 1; x < L.width; ++x)
+  for (int y = L.colorbar.y; y < L.colorbar.bottom(); ++y)
+    for (int x = L.colorbar.right() + 1; x < L.width; ++x)
       if (!(a.at(x, y) == b.at(x, y))) return false;
   return true;
 }
@@ -152,7 +154,7 @@ TEST(FixedSequence, RefittingFramesAreCaughtByTheSameChecks) {
 
 TEST(FixedSequence, ScaleBarMagnificationAndFailedJoints) {
   Scene s = falling(0, 0);
-  s.contacts.push_back({1, 0, dda::ContactState::Sliding, 0, 2, false});  // a failed joint on the ground's top edge
+  s.contacts.push_back({1, 0, dda::ContactState::Sliding, 0, 2, true});  // a failed joint on the ground's top edge
   FrameOptions o;
   o.width = 320, o.height = 240;
   o.field = Field::None;

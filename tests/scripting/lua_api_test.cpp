@@ -25,18 +25,6 @@ class LuaApi : public dda::test::LuaStateTest {
     s.params["answer"] = "42";
     start(std::move(s));
   }
-  double number(const char* global) {
-    lua_getglobal(L, global);
-    const double v = lua_tonumber(L, -1);
-    lua_pop(L, 1);
-    return v;
-  }
-  std::string string(const char* global) {
-    lua_getglobal(L, global);
-    const std::string v = lua_tostring(L, -1) ? lua_tostring(L, -1) : "(nil)";
-    lua_pop(L, 1);
-    return v;
-  }
 
   std::unique_ptr<dda::test::TempDir> out_;
 };

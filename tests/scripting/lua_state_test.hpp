@@ -6,6 +6,7 @@
 
 #include <string>
 
+#include "run_control.hpp"
 #include "scripting.hpp"
 
 namespace dda::test {
@@ -17,6 +18,7 @@ class LuaStateTest : public ::testing::Test {
     ASSERT_NE(L, nullptr);
   }
   void TearDown() override {
+    script::stop_background_runs();  // before the models close (run_control.hpp)
     if (L) lua_close(L);
   }
 
@@ -24,6 +26,19 @@ class LuaStateTest : public ::testing::Test {
   void run(const std::string& code) {
     std::string error;
     ASSERT_TRUE(script::run_string(L, code, "test", error)) << error;
+  }
+  // A global's value (0 / "(nil)" when it is not a number / string).
+  double number(const char* global) {
+    lua_getglobal(L, global);
+    const double v = lua_tonumber(L, -1);
+    lua_pop(L, 1);
+    return v;
+  }
+  std::string string(const char* global) {
+    lua_getglobal(L, global);
+    const std::string v = lua_tostring(L, -1) ? lua_tostring(L, -1) : "(nil)";
+    lua_pop(L, 1);
+    return v;
   }
   // Runs code expecting an error; returns the message.
   std::string error_of(const std::string& code) {

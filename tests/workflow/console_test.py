@@ -5,59 +5,9 @@ reproduced first: before, EOF at a continuation line aborted (Lua PANIC,
 exit 134, the model lost) and Ctrl-C at the prompt killed the console.
 Run: console_test.py path/to/dda"""
 import os
-import pty
-import select
-import signal
 import time
 
-from common import DDA, check, finish, read, run, scratch, write
-
-
-class Console:
-    def __init__(self, cwd, env):
-        self.pid, self.fd = pty.fork()
-        if self.pid == 0:
-            os.chdir(cwd)
-            os.environ.update(env)
-            os.environ["TERM"] = "xterm"
-            os.execv(DDA, [DDA, "console"])
-        self.out = b""
-
-    def expect(self, text, timeout=20):
-        """Reads until `text` appears after what was read so far; returns the text read."""
-        start = len(self.out)
-        end = time.time() + timeout
-        while time.time() < end:
-            if text.encode() in self.out[start:]:
-                return self.out[start:].decode(errors="replace")
-            r, _, _ = select.select([self.fd], [], [], 0.2)
-            if r:
-                try:
-                    data = os.read(self.fd, 4096)
-                except OSError:
-                    break
-                if not data:
-                    break
-                self.out += data
-        return None
-
-    def send(self, text):
-        os.write(self.fd, text.encode())
-        time.sleep(0.15)
-
-    def wait(self, timeout=20):
-        end = time.time() + timeout
-        while time.time() < end:
-            pid, status = os.waitpid(self.pid, os.WNOHANG)
-            if pid:
-                return status
-            try:
-                select.select([self.fd], [], [], 0.2)
-                os.read(self.fd, 4096)
-            except OSError:
-                pass
-        os.kill(self.pid, signal.SIGKILL)
-        return None
+from common import Console, check, finish, read, run, scratch, write
 
 
 d = scratch("console")

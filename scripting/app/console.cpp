@@ -13,6 +13,7 @@
 // as at any end of input.
 #include <signal.h>
 #include <sys/select.h>
+#include <sys/time.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -23,12 +24,15 @@
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
+#include <mutex>
 #include <set>
 #include <string>
 #include <vector>
 
-#include "scripting.hpp"
-#include "wrap.hpp"
+#include "app.hpp"
+#include "core/error.hpp"
+#include "live_server.hpp"
+#include "run_control.hpp"
 
 #ifdef DDA_HAVE_READLINE
 #include <readline/history.h>
@@ -36,8 +40,6 @@
 #endif
 
 namespace dda::script {
-
-int docall_with_traceback(lua_State* L, int nargs, int nresults);  // runner.cpp
 
 namespace {
 
@@ -50,6 +52,20 @@ constexpr int kCancelled = -2;  // load_statement: Ctrl-C dropped the input
 // ---- reading lines -------------------------------------------------------------------
 
 enum class Read { Line, End, Interrupted };
+
+// Waiting for input, the console lets go of Lua: a background run whose
+// loads are Lua functions steps meanwhile (run_control.hpp).
+struct WithoutLua {
+  template <class F>
+  auto call(F f) {
+    const int depth = lua_gate().release_all();
+    auto result = f();
+    const int saved_errno = errno;  // f's, for the caller
+    lua_gate().take_back(depth);
+    errno = saved_errno;
+    return result;
+  }
+};
 
 // While the console waits for input, Ctrl-C only sets this flag; the read
 // returns (no SA_RESTART) and the line is dropped.
@@ -92,7 +108,8 @@ void on_rl_line(char* s) {
   rl_callback_handler_remove();  // no new prompt until we ask for one
 }
 
-// readline's callback interface: a select loop the Ctrl-C flag can break.
+// readline's callback interface: a select loop the Ctrl-C flag can break,
+// which prints what background runs have to say above the prompt.
 Read readline_line(std::string& line, const char* prompt) {
   g_rl_line = &line;
   g_rl_done = g_rl_end = false;
@@ -102,7 +119,18 @@ Read readline_line(std::string& line, const char* prompt) {
     fd_set fds;
     FD_ZERO(&fds);
     FD_SET(fd, &fds);
-    const int r = select(fd + 1, &fds, nullptr, nullptr, nullptr);
+    timeval tick{0, 250000};
+    const int r = WithoutLua().call([&] { return select(fd + 1, &fds, nullptr, nullptr, &tick); });
+    if (r == 0) {
+      const std::vector<std::string> notes = background_run_notices();
+      if (notes.empty()) continue;
+      rl_clear_visible_line();
+      for (const std::string& n : notes) std::fprintf(stdout, "dda: %s\n", n.c_str());
+      std::fflush(stdout);
+      rl_on_new_line();
+      rl_redisplay();
+      continue;
+    }
     if (r < 0 && errno == EINTR && g_prompt_interrupt) {
       g_prompt_interrupt = 0;
       rl_free_line_state();
@@ -136,7 +164,7 @@ Read read_line(std::string& line, const char* prompt) {
   }
   char buf[4096];
   for (;;) {
-    if (!std::fgets(buf, sizeof buf, stdin)) {
+    if (!WithoutLua().call([&] { return std::fgets(buf, sizeof buf, stdin); })) {
       if (g_prompt_interrupt) {
         clearerr(stdin);
         std::fputc('\n', stdout);
@@ -519,10 +547,23 @@ void report(lua_State* L) {
   lua_pop(L, 1);
 }
 
+// Ctrl-C pauses every background run (and stops the command in progress).
+void pause_background_runs_and_say() {
+  for (const std::string& line : pause_background_runs()) std::fprintf(stderr, "dda: %s\n", line.c_str());
+  std::fflush(stderr);
+}
+
+void print_notices() {
+  for (const std::string& n : background_run_notices()) std::fprintf(stdout, "dda: %s\n", n.c_str());
+  std::fflush(stdout);
+}
+
 int call_interruptibly(lua_State* L, int nargs, int nresults) {
   install_interrupt_handler(L);
-  const int status = docall_with_traceback(L, nargs, nresults);
+  const int status = call_with_traceback(L, nargs, nresults);
   remove_interrupt_handler();
+  release_call_holds();  // any an error unwound past
+  if (interrupt_requested()) pause_background_runs_and_say();
   clear_interrupt();
   return status;
 }
@@ -537,11 +578,20 @@ int run_console(const RunOptions& options) {
     std::fprintf(stderr, "dda: cannot create a Lua state (not enough memory)\n");
     return 1;
   }
-  lua_pushcfunction(L, guarded<dda_help>);
+  if (std::string live_error; !start_live_view(L, options.script, live_error)) {
+    std::fprintf(stderr, "dda: %s\n", live_error.c_str());
+    lua_close(L);
+    return 2;
+  }
+  const std::lock_guard lua(lua_gate());  // let go while waiting for input and in m:wait()
+  // help() at the prompt: the module's dda.help.
+  lua_getglobal(L, "dda");
+  lua_getfield(L, -1, "help");
   lua_setglobal(L, "help");
+  lua_pop(L, 1);
   std::printf(
       "dda console %s (Lua %s.%s). help() lists the API; Tab completes names; Ctrl-C stops a run at the next "
-      "step; Ctrl-D leaves.\n",
+      "step (and pauses background runs); Ctrl-D leaves.\n",
       DDA_VERSION_TEXT, LUA_VERSION_MAJOR, LUA_VERSION_MINOR);
   std::fflush(stdout);
   setup_readline(L);
@@ -552,12 +602,18 @@ int run_console(const RunOptions& options) {
     if (!run_file(L, resolve_script(options.script).string(), options.script_args, error))
       std::fprintf(stderr, "%s\n", error.c_str());
     remove_interrupt_handler();
+    release_call_holds();
+    if (interrupt_requested()) pause_background_runs_and_say();
     clear_interrupt();
   }
   for (;;) {
+    print_notices();
     int status = load_statement(L);
     if (status == kEnd) break;
-    if (status == kCancelled) continue;
+    if (status == kCancelled) {
+      pause_background_runs_and_say();
+      continue;
+    }
     if (status == LUA_OK) status = call_interruptibly(L, 0, LUA_MULTRET);
     if (status == LUA_OK)
       print_results(L);
@@ -568,6 +624,7 @@ int run_console(const RunOptions& options) {
   trim_history();
   std::fputc('\n', stdout);
   for (const std::string& w : unused_params(session(L))) std::fprintf(stderr, "dda: %s\n", w.c_str());
+  stop_background_runs();  // before the models close
   lua_close(L);
   return 0;
 }

@@ -1,16 +1,18 @@
 // The dda executable:
 //   dda run SCRIPT.lua [--out DIR] [--threads N] [--set NAME=VALUE]... [--quiet]
 //                      [--frames N [--frame-field F] [--frame-size WxH]]
-//                      [--checkpoint-every N|Ts] [--restart FILE] [-- ARGS...]
-//   dda console [SCRIPT.lua] [--out DIR] [--threads N] [--set NAME=VALUE]...
+//                      [--checkpoint-every N|Ts] [--restart FILE] [--live [ADDR:]PORT]
+//                      [--realtime F] [-- ARGS...]
+//   dda console [SCRIPT.lua] [--out DIR] [--threads N] [--set NAME=VALUE]... [--live [ADDR:]PORT]
 //   dda SCRIPT.lua ...      (same as dda run)
 //   dda --help | --version
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <string>
 
-#include "scripting.hpp"
+#include "app.hpp"
 
 #ifdef DDA_HAVE_RENDER
 #include "core/error.hpp"
@@ -32,9 +34,13 @@ const char* kUsage =
     "  --threads N        worker threads for every model (0: every core); overrides the script\n"
     "  --set NAME=VALUE   a parameter the script reads with dda.param(\"NAME\", default)\n"
     "  --quiet            no progress line\n"
+    "  --live [ADDR:]PORT serve a live view of the run at http://ADDR:PORT/ (ADDR: 127.0.0.1, this\n"
+    "                     machine only; 0.0.0.0: every address; PORT 0: any free port)\n"
+    "  --realtime F       pace every run to F simulated seconds per wall-clock second (1: real time);\n"
+    "                     a run that cannot keep up says so\n"
     "  --frames N         every model writes a PNG frame every N steps into DIR/frames\n"
     "  --frames A:B:N     ... from step A to step B (B empty: to the end)\n"
-    "  --frame-range MIN,MAX  their colour range in SI units (default: from the first frame)\n"
+    "  --frame-range MIN,MAX  a fixed colour range in SI units (default: each frame's own)\n"
     "  --frame-view X1,Y1,X2,Y2  the world window they show in m (default: the first frame's)\n"
     "  --movie FILE       with --frames: DIR/FILE made with ffmpeg when the run ends (if on the PATH)\n"
     "  --frame-field F    the field of those frames: sigma_xx (default), sigma_yy, tau_xy,\n"
@@ -197,6 +203,18 @@ int main(int argc, char** argv) {
             "0.01s), got '%s'",
             v ? v : "");
       }
+    } else if (a == "--live") {
+      const char* v = value("--live");
+      if (!v || !*v) return usage_error("%s needs [ADDR:]PORT (e.g. 8080)", "--live");
+      opt.session.live_address = v;
+    } else if (a == "--realtime") {
+      const char* v = value("--realtime");
+      char* end = nullptr;
+      const double f = v ? std::strtod(v, &end) : 0;
+      if (!v || !*v || *end != '\0' || !(f > 0) || !std::isfinite(f))
+        return usage_error("--realtime needs a factor > 0 (1: simulated time at the wall clock's pace), got '%s'",
+                           v ? v : "");
+      opt.session.realtime = f;
     } else if (a == "--quiet" || a == "-q") {
       opt.session.quiet = true;
     } else if (a.rfind("--", 0) == 0) {

@@ -28,9 +28,9 @@
 #include <thread>
 #include <vector>
 
+#include "app.hpp"
 #include "core/error.hpp"
 #include "output_file.hpp"
-#include "scripting.hpp"
 
 extern char** environ;
 

@@ -1,19 +1,13 @@
-// Lua states with the dda module, running files and strings with a
-// traceback handler, and `dda run` (batch).
-#include <unistd.h>
-
-#include <cerrno>
-#include <chrono>
-#include <cstdio>
+// Lua states with the dda module, and running files and strings in them
+// with a traceback handler.
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
-#include <thread>
+#include <mutex>
 
 #include "core/error.hpp"
-#include "dda_version.hpp"
 #include "lua_support.hpp"
-#include "model.hpp"
+#include "run_control.hpp"
 #include "scripting.hpp"
 
 namespace dda::script {
@@ -137,7 +131,24 @@ int search_lua_text(lua_State* L) {
   return 2;
 }
 
-int script_exit(lua_State* L);  // below, with the batch run
+// os.exit([code]): as Lua's (true: success, false: failure, else the
+// number), but the state is closed first, so every model finishes its
+// outputs (no model is left with frames queued on its writer thread while
+// exit() destroys the statics that thread uses, the font cache). The
+// session's on_exit, when set (`dda run`), ends the run as when the script
+// returns and gives the exit status.
+int script_exit(lua_State* L) {
+  const int requested = lua_isboolean(L, 1) ? (lua_toboolean(L, 1) ? EXIT_SUCCESS : EXIT_FAILURE)
+                                            : static_cast<int>(luaL_optinteger(L, 1, EXIT_SUCCESS));
+  lua_rawgeti(L, LUA_REGISTRYINDEX, LUA_RIDX_MAINTHREAD);
+  lua_State* main = lua_tothread(L, -1);
+  lua_pop(L, 1);
+  // A copy: the session goes with the state that on_exit closes.
+  if (const std::function<int(lua_State*, int)> on_exit = session(main).on_exit) std::exit(on_exit(main, requested));
+  stop_background_runs();
+  lua_close(main);  // the console, tests: close every model, then exit
+  std::exit(requested);
+}
 
 void refuse_bytecode(lua_State* L) {
   const std::pair<const char*, lua_CFunction> text_only_loaders[] = {{"load", text_load}, {"loadfile", text_loadfile}};
@@ -157,7 +168,7 @@ void refuse_bytecode(lua_State* L) {
 
 }  // namespace
 
-int docall_with_traceback(lua_State* L, int nargs, int nresults) { return docall(L, nargs, nresults); }
+int call_with_traceback(lua_State* L, int nargs, int nresults) { return docall(L, nargs, nresults); }
 
 lua_State* new_state(Session s) {
   lua_State* L = luaL_newstate();
@@ -175,6 +186,7 @@ lua_State* new_state(Session s) {
 }
 
 bool run_file(lua_State* L, const std::string& path, const std::vector<std::string>& args, std::string& error) {
+  const std::lock_guard lua(lua_gate());  // run_control.hpp
   // arg table, as lua.c: arg[0] = script, arg[1..] = its arguments.
   lua_createtable(L, static_cast<int>(args.size()), 1);
   lua_pushstring(L, path.c_str());
@@ -224,24 +236,8 @@ bool run_file(lua_State* L, const std::string& path, const std::vector<std::stri
   return true;
 }
 
-std::filesystem::path resolve_script(const std::string& script) {
-  const std::filesystem::path p(script);
-  std::error_code ec;
-  if (p.is_absolute() || std::filesystem::exists(p, ec)) return p;
-#ifdef DDA_SCRIPTS_FROM_BIN
-  // An installed dda: its scenes in <prefix>/share/dda/scripts.
-  const auto exe = std::filesystem::read_symlink("/proc/self/exe", ec);
-  if (!ec) {
-    const auto installed = exe.parent_path() / DDA_SCRIPTS_FROM_BIN / p;
-    if (std::filesystem::exists(installed, ec)) return installed.lexically_normal();
-  }
-#endif
-  return p;
-}
-
-const char* commit_id() { return DDA_COMMIT; }
-
 bool run_string(lua_State* L, const std::string& code, const std::string& chunkname, std::string& error) {
+  const std::lock_guard lua(lua_gate());  // run_control.hpp
   if (luaL_loadbufferx(L, code.data(), code.size(), ("=" + chunkname).c_str(), "t") != LUA_OK) {
     error = pop_error(L);
     return false;
@@ -251,166 +247,6 @@ bool run_string(lua_State* L, const std::string& code, const std::string& chunkn
     return false;
   }
   return true;
-}
-
-namespace {
-
-void log_start(Session& s, const RunOptions& options) {
-  s.log.open(s.out_dir / "run.log");
-  s.log.line("==== dda run: " + (options.command_line.empty() ? options.script : options.command_line));
-  char host[256] = "?";
-  gethostname(host, sizeof host - 1);
-  s.log.line(msg("version ", DDA_VERSION_TEXT, ", commit ", DDA_COMMIT, ", Lua ", LUA_VERSION_MAJOR, ".",
-                 LUA_VERSION_MINOR, ", host ", host));
-  s.log.line(msg("script ", options.script, ", working folder ", std::filesystem::current_path().string()));
-  s.log.line(msg("threads: ",
-                 s.threads < 0    ? std::string("as the script sets them (--threads not given)")
-                 : s.threads == 0 ? std::string("every core (--threads 0)")
-                                  : msg(s.threads, " (--threads)"),
-                 "; ", std::thread::hardware_concurrency(), " hardware threads"));
-  std::string params;
-  for (const auto& [k, v] : s.params) params += " " + k + "=" + v;
-  s.log.line("parameters (--set):" + (params.empty() ? std::string(" none") : params));
-  if (s.checkpoint_steps > 0 || s.checkpoint_seconds > 0)
-    s.log.line(msg("checkpoints: every ",
-                   s.checkpoint_steps > 0 ? msg(s.checkpoint_steps, " steps") : msg(s.checkpoint_seconds, " s"),
-                   " into ", (s.out_dir / "checkpoint.ckpt").string()));
-}
-
-// --restart FILE: read and checked before the script runs (a wrong file
-// fails at once, not at the first step).
-bool read_restart(Session& s, std::string& error) {
-  if (s.restart_file.empty()) return true;
-  try {
-    std::vector<std::string> ignored;  // the script gives its Lua functions again
-    s.restart = ScriptModel::load(s.restart_file, ignored);
-  } catch (const Error& e) {
-    error = msg("--restart: ", e.what());
-    return false;
-  }
-  s.log.line(msg("restart from ", s.restart_file, ": model ", s.restart->number, " at step ",
-                 s.restart->world().step_count(), ", t = ", s.restart->world().time(), " s"));
-  return true;
-}
-
-}  // namespace
-
-namespace {
-
-// How the run ends, whether the script returns or calls os.exit: results
-// and outputs written and checked, the state closed (models finish their
-// queued frames and files), the run log's last line. Returns the exit status
-// (`requested`: the script's os.exit status, when it is still ok).
-int finish_batch(lua_State* L, bool ok, std::string error, int requested, std::chrono::steady_clock::time_point start) {
-  const bool interrupted = interrupt_requested();
-  remove_interrupt_handler();
-  // A script that failed early never reached its dda.param calls: no warnings then.
-  if (ok)
-    for (const std::string& w : unused_params(session(L))) warn(w.substr(w.rfind("warning: ", 0) == 0 ? 9 : 0));
-  if (!session(L).results.empty()) {
-    std::string why;
-    if (!write_results(session(L), why)) {
-      if (ok) error = why;
-      ok = false;
-    }
-  }
-  // lua_close closes every model: frame sequences finish their queued
-  // frames, monitors close their CSV files. The log outlives it.
-  RunLog log = std::move(session(L).log);
-  set_run_log(&log);
-  lua_close(L);
-  // What the script printed is an output too (dda run > table.txt).
-  errno = 0;
-  if ((std::fflush(stdout) != 0 || std::ferror(stdout)) && ok) {
-    error = msg("cannot write the standard output: ", errno ? std::strerror(errno) : "a write failed");
-    ok = false;
-  }
-  if (!log.failure().empty() && ok) {
-    error = msg("run log: ", log.failure());
-    ok = false;
-  }
-  int status = ok ? requested : 1;
-  if (!ok) {
-    std::fprintf(stderr, "dda: %s\n", error.c_str());
-    log.line("error: " + error);
-    if (interrupted) {
-      std::fprintf(stderr, "dda: interrupted; the monitor files hold every step computed so far\n");
-      status = 130;
-    }
-  } else if (interrupted) {
-    status = 130;
-  }
-  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  set_run_log(nullptr);
-  log.line(msg("end: exit status ", status,
-               status == 0     ? " (ok)"
-               : status == 130 ? " (interrupted)"
-                               : " (error)",
-               " after ", wall, " s"));
-  return status;
-}
-
-// The batch run in progress, for os.exit.
-struct BatchInProgress {
-  lua_State* L;
-  std::chrono::steady_clock::time_point start;
-};
-BatchInProgress* g_batch = nullptr;
-
-// os.exit([code]): as Lua's (true: success, false: failure, else the
-// number), but the run ends as when the script returns: the state is
-// closed first, so no model is left with frames queued on its writer thread
-// while exit() destroys the statics that thread uses (the font cache), and
-// every output is finished and checked.
-int script_exit(lua_State* L) {
-  const int requested = lua_isboolean(L, 1) ? (lua_toboolean(L, 1) ? EXIT_SUCCESS : EXIT_FAILURE)
-                                            : static_cast<int>(luaL_optinteger(L, 1, EXIT_SUCCESS));
-  lua_rawgeti(L, LUA_REGISTRYINDEX, LUA_RIDX_MAINTHREAD);
-  lua_State* main = lua_tothread(L, -1);
-  lua_pop(L, 1);
-  if (g_batch && main == g_batch->L) {
-    const BatchInProgress batch = *g_batch;
-    g_batch = nullptr;
-    std::exit(finish_batch(batch.L, true, "", requested, batch.start));
-  }
-  lua_close(main);  // the console, tests: close every model, then exit
-  std::exit(requested);
-}
-
-}  // namespace
-
-int run_batch(const RunOptions& options) {
-  const auto start = std::chrono::steady_clock::now();
-  Session s = options.session;
-  if (!s.quiet) s.progress = isatty(fileno(stderr)) && isatty(fileno(stdout)) ? ProgressMode::Bar : ProgressMode::Lines;
-  if (const char* env = std::getenv("DDA_PROGRESS_SECONDS"); env && *env) s.progress_seconds = std::atof(env);
-  log_start(s, options);
-  std::string restart_error;
-  if (!read_restart(s, restart_error)) {
-    std::fprintf(stderr, "dda: %s\n", restart_error.c_str());
-    s.log.line("error: " + restart_error);
-    s.log.line("end: exit status 1 (error)");
-    return 1;
-  }
-  lua_State* L = new_state(std::move(s));
-  if (!L) {
-    std::fprintf(stderr, "dda: cannot create a Lua state (not enough memory)\n");
-    return 1;
-  }
-  set_run_log(&session(L).log);
-  install_interrupt_handler(L);
-  BatchInProgress batch{L, start};
-  g_batch = &batch;
-  std::string error;
-  const std::filesystem::path script = resolve_script(options.script);
-  bool ok = run_file(L, script.string(), options.script_args, error);
-  g_batch = nullptr;
-  if (ok && session(L).restart) {
-    ok = false;
-    error = msg("--restart ", session(L).restart_file, ": the script never stepped its model ",
-                session(L).restart->number, ", which the checkpoint holds: nothing was continued");
-  }
-  return finish_batch(L, ok, std::move(error), 0, start);
 }
 
 }  // namespace dda::script

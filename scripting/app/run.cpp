@@ -1,0 +1,202 @@
+// `dda run` (batch): the run log, a restart's checkpoint, the script in a
+// fresh state with Ctrl-C handled, and the end of the run (results, outputs
+// checked, exit status).
+#include <unistd.h>
+
+#include <cerrno>
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <filesystem>
+#include <thread>
+
+#include "app.hpp"
+#include "core/error.hpp"
+#include "dda_version.hpp"
+#include "live_server.hpp"
+#include "model.hpp"
+#include "output_file.hpp"
+#include "run_control.hpp"
+
+namespace dda::script {
+
+std::filesystem::path resolve_script(const std::string& script) {
+  const std::filesystem::path p(script);
+  std::error_code ec;
+  if (p.is_absolute() || std::filesystem::exists(p, ec)) return p;
+#ifdef DDA_SCRIPTS_FROM_BIN
+  // An installed dda: its scenes in <prefix>/share/dda/scripts.
+  const auto exe = std::filesystem::read_symlink("/proc/self/exe", ec);
+  if (!ec) {
+    const auto installed = exe.parent_path() / DDA_SCRIPTS_FROM_BIN / p;
+    if (std::filesystem::exists(installed, ec)) return installed.lexically_normal();
+  }
+#endif
+  return p;
+}
+
+const char* commit_id() { return DDA_COMMIT; }
+
+namespace {
+
+void log_start(Session& s, const RunOptions& options) {
+  s.log.open(s.out_dir / "run.log");
+  s.log.line("==== dda run: " + (options.command_line.empty() ? options.script : options.command_line));
+  char host[256] = "?";
+  gethostname(host, sizeof host - 1);
+  s.log.line(msg("version ", DDA_VERSION_TEXT, ", commit ", DDA_COMMIT, ", Lua ", LUA_VERSION_MAJOR, ".",
+                 LUA_VERSION_MINOR, ", host ", host));
+  s.log.line(msg("script ", options.script, ", working folder ", std::filesystem::current_path().string()));
+  s.log.line(msg("threads: ",
+                 s.threads < 0    ? std::string("as the script sets them (--threads not given)")
+                 : s.threads == 0 ? std::string("every core (--threads 0)")
+                                  : msg(s.threads, " (--threads)"),
+                 "; ", std::thread::hardware_concurrency(), " hardware threads"));
+  std::string params;
+  for (const auto& [k, v] : s.params) params += " " + k + "=" + v;
+  s.log.line("parameters (--set):" + (params.empty() ? std::string(" none") : params));
+  if (s.checkpoint_steps > 0 || s.checkpoint_seconds > 0)
+    s.log.line(msg("checkpoints: every ",
+                   s.checkpoint_steps > 0 ? msg(s.checkpoint_steps, " steps") : msg(s.checkpoint_seconds, " s"),
+                   " into ", (s.out_dir / "checkpoint.ckpt").string()));
+}
+
+// --restart FILE: read and checked before the script runs (a wrong file
+// fails at once, not at the first step).
+bool read_restart(Session& s, std::string& error) {
+  if (s.restart_file.empty()) return true;
+  try {
+    std::vector<std::string> ignored;  // the script gives its Lua functions again
+    s.restart = ScriptModel::load(s.restart_file, ignored);
+  } catch (const Error& e) {
+    error = msg("--restart: ", e.what());
+    return false;
+  }
+  s.log.line(msg("restart from ", s.restart_file, ": model ", s.restart->number, " at step ",
+                 s.restart->world().step_count(), ", t = ", s.restart->world().time(), " s"));
+  return true;
+}
+
+// Writes <out>/result.csv (a header of the names, one row of values); false and `why` if it cannot.
+bool write_results(const Session& s, std::string& why) {
+  std::string header, row;
+  for (const auto& [k, v] : s.results) {
+    header.append(header.empty() ? "" : ",").append(csv_field(k));
+    row.append(row.empty() ? "" : ",").append(csv_field(v.text));
+  }
+  try {
+    std::error_code ec;
+    std::filesystem::create_directories(s.out_dir, ec);
+    write_file_atomically(s.out_dir / "result.csv", header + "\n" + row + "\n");
+  } catch (const std::exception& e) {
+    why = msg("the results: ", e.what());
+    return false;
+  }
+  return true;
+}
+
+// How the run ends, whether the script returns or calls os.exit: results
+// and outputs written and checked, the state closed (models finish their
+// queued frames and files), the run log's last line. Returns the exit status
+// (`requested`: the script's os.exit status, when it is still ok).
+int finish_batch(lua_State* L, bool ok, std::string error, int requested, std::chrono::steady_clock::time_point start) {
+  // Background runs the script left going end first (a paused one only when
+  // a live view can resume it); one that failed fails the run.
+  if (ok) wait_background_runs(session(L).live != nullptr, interrupt_requested);
+  for (const std::string& failure : background_failures())
+    if (ok) ok = false, error = failure;
+  stop_background_runs();
+  const bool interrupted = interrupt_requested();
+  remove_interrupt_handler();
+  // A script that failed early never reached its dda.param calls: no warnings then.
+  if (ok)
+    for (const std::string& w : unused_params(session(L))) warn(w.substr(w.rfind("warning: ", 0) == 0 ? 9 : 0));
+  if (!session(L).results.empty()) {
+    std::string why;
+    if (!write_results(session(L), why)) {
+      if (ok) error = why;
+      ok = false;
+    }
+  }
+  // lua_close closes every model: frame sequences finish their queued
+  // frames, monitors close their CSV files. The log outlives it.
+  RunLog log = std::move(session(L).log);
+  set_run_log(&log);
+  lua_close(L);
+  // What the script printed is an output too (dda run > table.txt).
+  errno = 0;
+  if ((std::fflush(stdout) != 0 || std::ferror(stdout)) && ok) {
+    error = msg("cannot write the standard output: ", errno ? std::strerror(errno) : "a write failed");
+    ok = false;
+  }
+  if (!log.failure().empty() && ok) {
+    error = msg("run log: ", log.failure());
+    ok = false;
+  }
+  int status = ok ? requested : 1;
+  if (!ok) {
+    std::fprintf(stderr, "dda: %s\n", error.c_str());
+    log.line("error: " + error);
+    if (interrupted) {
+      std::fprintf(stderr, "dda: interrupted; the monitor files hold every step computed so far\n");
+      status = 130;
+    }
+  } else if (interrupted) {
+    status = 130;
+  }
+  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  set_run_log(nullptr);
+  log.line(msg("end: exit status ", status,
+               status == 0     ? " (ok)"
+               : status == 130 ? " (interrupted)"
+                               : " (error)",
+               " after ", wall, " s"));
+  return status;
+}
+
+}  // namespace
+
+int run_batch(const RunOptions& options) {
+  const auto start = std::chrono::steady_clock::now();
+  Session s = options.session;
+  if (!s.quiet) s.progress = isatty(fileno(stderr)) && isatty(fileno(stdout)) ? ProgressMode::Bar : ProgressMode::Lines;
+  if (const char* env = std::getenv("DDA_PROGRESS_SECONDS"); env && *env) s.progress_seconds = std::atof(env);
+  log_start(s, options);
+  std::string restart_error;
+  if (!read_restart(s, restart_error)) {
+    std::fprintf(stderr, "dda: %s\n", restart_error.c_str());
+    s.log.line("error: " + restart_error);
+    s.log.line("end: exit status 1 (error)");
+    return 1;
+  }
+  lua_State* L = new_state(std::move(s));
+  if (!L) {
+    std::fprintf(stderr, "dda: cannot create a Lua state (not enough memory)\n");
+    return 1;
+  }
+  set_run_log(&session(L).log);
+  if (std::string live_error; !start_live_view(L, options.script, live_error)) {
+    std::fprintf(stderr, "dda: %s\n", live_error.c_str());
+    session(L).log.line("error: " + live_error);
+    lua_close(L);
+    return 2;
+  }
+  install_interrupt_handler(L);
+  // os.exit ends the run as a return does: results and outputs written and checked.
+  session(L).on_exit = [start](lua_State* main, int requested) {
+    return finish_batch(main, true, "", requested, start);
+  };
+  std::string error;
+  const std::filesystem::path script = resolve_script(options.script);
+  bool ok = run_file(L, script.string(), options.script_args, error);
+  session(L).on_exit = nullptr;
+  if (ok && session(L).restart) {
+    ok = false;
+    error = msg("--restart ", session(L).restart_file, ": the script never stepped its model ",
+                session(L).restart->number, ", which the checkpoint holds: nothing was continued");
+  }
+  return finish_batch(L, ok, std::move(error), 0, start);
+}
+
+}  // namespace dda::script
