@@ -46,7 +46,6 @@ BlockId append_block(Blocks& bl, std::span<const Vec2> vertices, int material, d
     bl.inner_edge.resize(bl.vertices.size(), 0);
     bl.mesh.resize(bl.count(), -1);
   }
-  if (!bl.joint_length.empty()) bl.joint_length.resize(bl.vertices.size(), 0.0);
   return id;
 }
 

@@ -45,20 +45,13 @@ struct Blocks {
   std::vector<int> node;
   std::vector<char> inner_edge;
   std::vector<int> mesh;
-  // Per vertex (its edge), empty while no block was meshed by the wave model
-  // (world/wave_model.hpp): the length of the first-order block's edge an
-  // element's outline edge lies on, 0 elsewhere. A joint without a
-  // stiffness of its own keeps there the stiffness the first-order edge had,
-  // two contacts of g0 over that length (the paper's Eq. 4, k_n = 2·g0/l),
-  // whatever the mesh (contact/open_close.hpp, ContactParameters::springs).
-  std::vector<double> joint_length;
 
   // What a checkpoint holds (core/archive.hpp): every array.
   template <class Archive>
   void fields(Archive& ar) {
     ar(vertex_start, vertices, centroid, area, sxx, syy, sxy, mass, material, stress, velocity, acceleration,
        out_of_balance, last_displacement, initial_vertices, edge_joint, edge_tag, initial_centroid, node, inner_edge,
-       mesh, joint_length);
+       mesh);
   }
 
   std::size_t count() const { return vertex_start.empty() ? 0 : vertex_start.size() - 1; }
@@ -91,8 +84,8 @@ struct MaterialPoint {
 Mat6 block_tt(const Blocks& blocks, std::size_t b, MeshMass mesh_mass);
 
 // Appends a counter-clockwise polygon as a first-order block at rest (its
-// mass from `density`); the mesh arrays and joint_length grow with it when
-// they exist or `with_mesh_arrays`. Returns its id. (No checks: World's.)
+// mass from `density`); the mesh arrays grow with it when they exist or
+// `with_mesh_arrays`. Returns its id. (No checks: World's.)
 BlockId append_block(Blocks& blocks, std::span<const Vec2> vertices, int material, double density,
                      std::span<const int> edge_joints, std::span<const EdgeTag> edge_tags, bool with_mesh_arrays);
 

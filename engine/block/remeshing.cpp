@@ -13,9 +13,8 @@ namespace {
 void copy_block(const Blocks& from, BlockId b, Blocks& to, double density, bool mesh_arrays) {
   const int start = from.vertex_start[b], n = from.vertex_count(b);
   const auto slots = [&](const auto& v) { return std::span(v).subspan(start, n); };
-  const BlockId id =
-      append_block(to, from.outline(b), from.material[b], density, slots(from.edge_joint), slots(from.edge_tag),
-                   mesh_arrays);
+  const BlockId id = append_block(to, from.outline(b), from.material[b], density, slots(from.edge_joint),
+                                  slots(from.edge_tag), mesh_arrays);
   const int to_start = to.vertex_start[id];
   std::copy_n(from.initial_vertices.begin() + start, n, to.initial_vertices.begin() + to_start);
   to.initial_centroid[id] = from.initial_centroid[b];
@@ -30,8 +29,6 @@ void copy_block(const Blocks& from, BlockId b, Blocks& to, double density, bool 
     std::copy_n(from.inner_edge.begin() + start, n, to.inner_edge.begin() + to_start);
     to.mesh[id] = from.mesh[b];
   }
-  if (mesh_arrays || !from.joint_length.empty()) to.joint_length.resize(to.vertices.size(), 0.0);
-  if (!from.joint_length.empty()) std::copy_n(from.joint_length.begin() + start, n, to.joint_length.begin() + to_start);
 }
 
 struct PendingMesh {
@@ -43,7 +40,37 @@ struct PendingMesh {
 
 }  // namespace
 
-Remeshing mesh_in_place(Blocks& blocks, std::span<const double> size, std::span<const RockMaterial> rocks) {
+// The joint of an element edge along a first-order edge of length l: the
+// edge's own, or, for a joint without a stiffness of its own, a copy with
+// the stiffness the first-order edge had (two contacts of g0 over l).
+class KeptJoints {
+ public:
+  KeptJoints(std::vector<JointMaterial>& joints, double g0) : joints_(joints), g0_(g0) {}
+  int operator()(int joint, double l) {
+    if (joints_[joint].normal_stiffness > 0) return joint;
+    for (const Copy& c : copies_)
+      if (c.joint == joint && c.length == l) return c.id;
+    JointMaterial copy = joints_[joint];
+    copy.normal_stiffness = 2 * g0_ / l;
+    copy.shear_stiffness = 0;  // shear_ratio·k_n, as g0 and shear_ratio·g0 were
+    joints_.push_back(copy);
+    copies_.push_back({joint, l, static_cast<int>(joints_.size()) - 1});
+    return copies_.back().id;
+  }
+
+ private:
+  struct Copy {
+    int joint;
+    double length;
+    int id;
+  };
+  std::vector<JointMaterial>& joints_;
+  double g0_;
+  std::vector<Copy> copies_;
+};
+
+Remeshing mesh_in_place(Blocks& blocks, std::span<const double> size, std::span<const RockMaterial> rocks,
+                        std::vector<JointMaterial>& joints, double g0) {
   const std::size_t count = blocks.count();
   // Every mesh first (a mesher error leaves the blocks untouched).
   std::vector<PendingMesh> meshes;
@@ -63,29 +90,30 @@ Remeshing mesh_in_place(Blocks& blocks, std::span<const double> size, std::span<
   r.blocks = &blocks;
   r.old_vertex_start = old.vertex_start;
   r.pieces.resize(old.vertices.size());
+  KeptJoints kept(joints, g0);
   // The elements of a pending mesh: triangle t as a block of its own.
   auto add_element = [&](PendingMesh& p, std::size_t t) {
     const BlockId b = p.block;
     const int old_start = old.vertex_start[b];
+    const auto outline = old.outline(b);
     std::vector<Vec2> corners(3);
-    std::vector<int> joints(3, 0);
+    std::vector<int> edge_joints(3, 0);
     std::vector<EdgeTag> tags(3);
     for (int k = 0; k < 3; ++k) {
       corners[k] = p.mesh.nodes[p.mesh.triangles[t][k]];
       const int edge = p.mesh.outline_edge[t][k];
-      if (edge >= 0) joints[k] = old.edge_joint[old_start + edge], tags[k] = old.edge_tag[old_start + edge];
+      if (edge < 0) continue;
+      const double l = (outline[(edge + 1) % outline.size()] - outline[edge]).norm();
+      edge_joints[k] = kept(old.edge_joint[old_start + edge], l);
+      tags[k] = old.edge_tag[old_start + edge];
     }
-    const BlockId e = append_block(blocks, corners, old.material[b], rocks[old.material[b]].density, joints, tags, true);
-    blocks.joint_length.resize(blocks.vertices.size(), 0.0);
+    const BlockId e =
+        append_block(blocks, corners, old.material[b], rocks[old.material[b]].density, edge_joints, tags, true);
     const int start = blocks.vertex_start[e];
     blocks.mesh[e] = p.id;
-    const auto outline = old.outline(b);
     for (int k = 0; k < 3; ++k) {
       blocks.node[start + k] = p.first_node + p.mesh.triangles[t][k];
-      const int edge = p.mesh.outline_edge[t][k];
-      blocks.inner_edge[start + k] = edge < 0;
-      if (edge >= 0)
-        blocks.joint_length[start + k] = (outline[(edge + 1) % outline.size()] - outline[edge]).norm();
+      blocks.inner_edge[start + k] = p.mesh.outline_edge[t][k] < 0;
     }
     // The block's stress and motion (its rates about its own centroid).
     blocks.stress[e] = old.stress[b];
@@ -118,7 +146,8 @@ Remeshing mesh_in_place(Blocks& blocks, std::span<const double> size, std::span<
       const Vec2 a = outline[edge];
       auto& pieces = r.pieces[old_start + edge];
       std::sort(pieces.begin(), pieces.end(), [&](const EdgeRef& x, const EdgeRef& y) {
-        return (blocks.outline(x.block)[x.edge] - a).squaredNorm() < (blocks.outline(y.block)[y.edge] - a).squaredNorm();
+        return (blocks.outline(x.block)[x.edge] - a).squaredNorm() <
+               (blocks.outline(y.block)[y.edge] - a).squaredNorm();
       });
     }
   }

@@ -44,9 +44,15 @@ struct Remeshing {
 // block b becomes the first element of its mesh and keeps its id, the
 // others follow the last block; the elements take the block's stress, its
 // motion (the rates about its centroid, as World::set_block_velocity) and
-// each outline edge's joint, tag and length (Blocks::joint_length). Blocks
-// with size 0 stay as they are. Throws dda::Error (from the mesher) naming
-// a block that cannot be meshed; the blocks are then left as they were.
-Remeshing mesh_in_place(Blocks& blocks, std::span<const double> size, std::span<const RockMaterial> rocks);
+// each outline edge's tag and joint. A joint keeps its physical stiffness:
+// one without a stiffness of its own had, on a first-order edge of length l,
+// two contacts of g0 (the paper's Eq. 4, k_n = 2·g0/l), which the mesh's
+// many contacts along the edge would multiply; its element edges get a copy
+// of it (appended to `joints`) with k_n = 2·g0/l given, shared by the edges
+// of one length. Blocks with size 0 stay as they are. Throws dda::Error
+// (from the mesher) naming a block that cannot be meshed; the blocks and
+// joints are then left as they were.
+Remeshing mesh_in_place(Blocks& blocks, std::span<const double> size, std::span<const RockMaterial> rocks,
+                        std::vector<JointMaterial>& joints, double g0);
 
 }  // namespace dda

@@ -53,8 +53,8 @@ int Boundaries::add_displacement_target(const Blocks& blocks, BlockId b, const V
 }
 
 std::vector<Boundaries::TargetPoint> Boundaries::edge_target_points(const Blocks& blocks,
-                                                                   const std::vector<EdgeRef>& edges, bool directed,
-                                                                   const Vec2& direction) const {
+                                                                    const std::vector<EdgeRef>& edges, bool directed,
+                                                                    const Vec2& direction) const {
   std::vector<TargetPoint> points;
   std::vector<std::pair<BlockId, int>> vertices;  // (block, vertex) of each point
   for (const EdgeRef& e : edges) {
@@ -75,7 +75,7 @@ std::vector<Boundaries::TargetPoint> Boundaries::edge_target_points(const Blocks
   }
   for (TargetPoint& p : points) {
     const Vec2 n = p.direction;
-    p.direction = !directed                ? Vec2(Vec2::Zero())
+    p.direction = !directed              ? Vec2(Vec2::Zero())
                   : direction.norm() > 0 ? Vec2(direction.normalized())
                   : n.norm() > 0         ? Vec2(n.normalized())
                                          : Vec2(Vec2::UnitX());
@@ -239,7 +239,8 @@ void Boundaries::make_points(int id, const Blocks& blocks, const std::vector<Roc
       const Vec2 a = v[e.edge], b = v[(e.edge + 1) % v.size()];
       const double l = (b - a).norm();
       if (std::abs(b.x() - a.x()) > 1e-6 * l)
-        throw Error(msg(what, ": edge ", e.edge, " of block ", e.block, " is not vertical (a free-field side must be)"));
+        throw Error(
+            msg(what, ": edge ", e.edge, " of block ", e.block, " is not vertical (a free-field side must be)"));
       const double nx = b.y() > a.y() ? 1.0 : -1.0;  // outward normal (t.y, −t.x) of a counter-clockwise outline
       if (normal_x != 0 && nx != normal_x)
         throw Error(msg(what, ": the edges face both ways; give the left and the right side as two free fields"));

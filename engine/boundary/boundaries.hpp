@@ -161,8 +161,8 @@ class Boundaries {
     bool per_length = true;
     template <class Archive>
     void fields(Archive& ar) {
-      ar(kind, first, count, incident, incident_vx, incident_vy, incident_velocity, zs, zp, column, edges, medium,
-         base, p, per_length);
+      ar(kind, first, count, incident, incident_vx, incident_vy, incident_velocity, zs, zp, column, edges, medium, base,
+         p, per_length);
     }
   };
   // A set of targets made on edges (add_edge_targets).
@@ -193,7 +193,7 @@ class Boundaries {
   DisplacementTarget& target(int id) { return const_cast<DisplacementTarget&>(std::as_const(*this).target(id)); }
 
   std::vector<FixedPoint> fixed_points_;
-  std::vector<char> fixed_from_edges_;            // per fixed point: made by fix_edges
+  std::vector<char> fixed_from_edges_;             // per fixed point: made by fix_edges
   std::vector<std::vector<EdgeRef>> fixed_edges_;  // each fix_edges call's edges
   std::vector<DisplacementTarget> targets_;
   std::vector<EdgeTargets> edge_targets_;

@@ -23,10 +23,8 @@ struct ContactParameters {
 
   // A contact's full springs (before its overlap scale): its joint's
   // stiffness over the length it stands for when the joint material gives
-  // one and the contact stands for a length (facing edges); on an edge the
-  // wave model meshed, the stiffness the first-order edge of length l had,
-  // k_n = 2·g0/l (two contacts of g0, the paper's Eq. 4), over that length;
-  // else g0 and shear_ratio·g0 (corners, and joints without a stiffness).
+  // one and the contact stands for a length (facing edges), else g0 and
+  // shear_ratio·g0 (corners, and joints without a stiffness).
   struct Springs {
     double kn, ks;
   };
@@ -36,21 +34,12 @@ struct ContactParameters {
       const double ks = j.shear_stiffness > 0 ? j.shear_stiffness : shear_ratio * j.normal_stiffness;
       return {j.normal_stiffness * c.length, ks * c.length};
     }
-    if (c.length > 0 && !joint_length.empty()) {
-      const double l = joint_length[vertex_start[c.eblock] + c.edge];
-      if (l > 0) return {2 * g0 / l * c.length, shear_ratio * 2 * g0 / l * c.length};
-    }
     return {g0, shear_ratio * g0};
   }
   ContactLaw law = ContactLaw::Holding;  // update_contact_state
   // Friction that lags the normal force by t_r = friction_lag (s; 0: none,
   // the control of that name; docs/contacts.md).
   double friction_lag = 0;
-  // Per vertex slot of the blocks (Blocks::vertex_start, joint_length):
-  // the length of the first-order edge an element's outline edge stands
-  // for, where the wave model meshed the blocks (empty otherwise).
-  std::span<const int> vertex_start;
-  std::span<const double> joint_length;
 };
 
 // A contact's springs (ContactParameters::springs), scaled by its overlap scale.

@@ -105,7 +105,8 @@ double signal_frequency(const LoadSignal& signal) {
     total += 0.5 * h * (a * a + a * b + b * b) / 3;
   }
   const double low = std::min_element(s.begin(), s.end(), [](auto& x, auto& y) { return x.second < y.second; })->second;
-  const double high = std::max_element(s.begin(), s.end(), [](auto& x, auto& y) { return x.second < y.second; })->second;
+  const double high =
+      std::max_element(s.begin(), s.end(), [](auto& x, auto& y) { return x.second < y.second; })->second;
   if (!(total > 0) || high - low <= 1e-12 * std::max(std::abs(high), std::abs(low))) return 0;
   // Its spectrum varies over 1/duration; up to where the samples can say
   // anything (half their finest rate). A coarse pass (at most 4000 steps)

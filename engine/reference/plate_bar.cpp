@@ -335,7 +335,8 @@ std::vector<double> plate_bar_stress(const Strip& strip, const std::vector<std::
       for (int n = 0; n < cols; ++n) amp[n] = c[n] / scale[n];
     }
     Complex g = std::exp(kI * omega * (x / c0));  // less G_1D
-    for (std::size_t n = 0; n < ms.size(); ++n) g += amp[n] * modes.fields(ms[n], omega, y).sxx * std::exp(kI * ms[n].k * x);
+    for (std::size_t n = 0; n < ms.size(); ++n)
+      g += amp[n] * modes.fields(ms[n], omega, y).sxx * std::exp(kI * ms[n].k * x);
     // Trapezoid in ω, a cosine taper over the last fifth of the band.
     double weight = (j == 0 || j == count) ? 0.5 : 1.0;
     const double taper_start = 0.8 * o.max_frequency;

@@ -101,8 +101,8 @@ enum class EndCondition { Rollers, Free };
 
 struct PlateBarOptions {
   EndCondition end = EndCondition::Rollers;
-  double max_frequency = 20e3;   // Hz: the synthesis is cut (tapered) here
-  double frequency_step = 5;     // Hz
+  double max_frequency = 20e3;  // Hz: the synthesis is cut (tapered) here
+  double frequency_step = 5;    // Hz
   // Modes kept at each frequency: every one that reaches the receiver
   // (decay over x above e^{−40}); a free end's least-squares fit takes at
   // least this many, the least decaying first.

@@ -22,17 +22,17 @@ constexpr ControlRange kZeroOffOrPositive{0, kInf, false, false, "must be zero (
 constexpr ControlRange kZeroAutomaticOrPositive{0, kInf, false, false, "must be zero (automatic) or positive"};
 constexpr ControlRange kOffOrUnitInterval{-1, 1, false, false, "must be -1 (off) or lie in [0, 1]", true};
 constexpr ControlRange kZeroEveryCoreOrPositive{0, kInf, false, false, "must be zero (every core) or positive"};
-constexpr ControlRange kAutomaticZeroOrPositive{-1, kInf, false, false,
-                                                "must be -1 (from the loads), 0 (first-order blocks) or positive", true};
+constexpr ControlRange kAutomaticZeroOrPositive{
+    -1, kInf, false, false, "must be -1 (from the loads), 0 (first-order blocks) or positive", true};
 
-constexpr const char* kPlaneNames[] = {"stress", "strain"};                            // PlaneMode order
+constexpr const char* kPlaneNames[] = {"stress", "strain"};                                  // PlaneMode order
 constexpr const char* kIntegratorNames[] = {"shi", "newmark", "generalized_alpha", "auto"};  // Integrator order
-constexpr const char* kMeshMassNames[] = {"consistent", "lumped", "mixed", "auto"};            // MeshMass order
-constexpr const char* kContactLawNames[] = {"holding", "shi"};                         // ContactLaw order
-constexpr const char* kPreconditionerNames[] = {"auto", "block_jacobi", "multigrid"};  // Preconditioning order
-constexpr const char* kSolverNames[] = {"auto", "pcg", "cholmod"};                     // SolverKind order
-constexpr const char* kFillOrderingNames[] = {"metis", "amd"};                         // FillOrdering order
-constexpr const char* kMeshPreconditionerNames[] = {"block_factor", "node_jacobi"};    // MeshPreconditioning order
+constexpr const char* kMeshMassNames[] = {"consistent", "lumped", "mixed", "auto"};          // MeshMass order
+constexpr const char* kContactLawNames[] = {"holding", "shi"};                               // ContactLaw order
+constexpr const char* kPreconditionerNames[] = {"auto", "block_jacobi", "multigrid"};        // Preconditioning order
+constexpr const char* kSolverNames[] = {"auto", "pcg", "cholmod"};                           // SolverKind order
+constexpr const char* kFillOrderingNames[] = {"metis", "amd"};                               // FillOrdering order
+constexpr const char* kMeshPreconditionerNames[] = {"block_factor", "node_jacobi"};  // MeshPreconditioning order
 
 constexpr ControlSpec number(const char* name, double& (*field)(Controls&), ControlRange range, const char* doc,
                              const char* default_text = nullptr) {
@@ -76,7 +76,8 @@ const ControlSpec kControls[] = {
         "integrator", kIntegratorNames, [](const Controls& c) { return static_cast<int>(c.integrator); },
         [](Controls& c, int i) { c.integrator = static_cast<Integrator>(i); },
         "time integration (`docs/time_integration.md`): `\"auto\"`, Shi's scheme, or, where the dynamic loads "
-        "had the blocks meshed (`docs/waves.md`), Newmark's average acceleration; `\"shi\"`, the paper's scheme (Newmark β = ½, γ = 1: "
+        "had the blocks meshed (`docs/waves.md`), Newmark's average acceleration; `\"shi\"`, the paper's scheme "
+        "(Newmark β = ½, γ = 1: "
         "first order, it damps a wave of angular frequency ω by about exp(−ω²Δt·t/4)); `\"newmark\"`, "
         "average acceleration (β = ¼, γ = ½: second order, no numerical damping); "
         "`\"generalized_alpha\"` (Chung–Hulbert: second order, damping only near the step's own "

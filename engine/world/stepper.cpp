@@ -150,9 +150,7 @@ void Stepper::begin_step(WorldState& w) {
 // (automatic); Δt starts at g1 and never exceeds it.
 void Stepper::derive_automatic_controls(WorldState& w) {
   const Controls& c = w.controls;
-  double e_max = 0;
-  for (const RockMaterial& r : w.rocks) e_max = std::max(e_max, r.youngs);
-  g0_ = c.g0 > 0 ? c.g0 : 50 * e_max;
+  g0_ = w.contact_spring();
   g1_ = c.g1 > 0 ? c.g1 : w.suggested_time_step();
   if (w.dt <= 0 || w.dt > g1_) w.dt = g1_;
 }
@@ -172,8 +170,6 @@ void Stepper::derive_material_constants(const WorldState& w) {
   for (std::size_t j = 0; j < w.joints.size(); ++j) tan_friction_[j] = std::tan(deg_to_rad(w.joints[j].friction_deg));
   contact_law_ = {g0_, c.shear_ratio, c.contact_tolerance * w.half_height, w.joints, tan_friction_, c.contact_law};
   contact_law_.friction_lag = c.friction_lag;
-  contact_law_.vertex_start = w.blocks.vertex_start;
-  contact_law_.joint_length = w.blocks.joint_length;
   scheme_.gg = c.gg;
   scheme_.choose(effective_integrator(w), c.rho_inf);
   scheme_.mesh_mass = effective_mesh_mass(w);

@@ -77,8 +77,8 @@ WaveModel choose_wave_model(const WorldState& w, const LoadFrequency& load) {
     const double h = wave_element_size(w.rocks[w.blocks.material[b]], f);
     h_min = h_min > 0 ? std::min(h_min, h) : h;
   }
-  const std::string head = msg("dynamic loads up to ", figure(f), " Hz (", load.source, ", ",
-                               kEnergyShare * 100, " % of its energy below)");
+  const std::string head =
+      msg("dynamic loads up to ", figure(f), " Hz (", load.source, ", ", kEnergyShare * 100, " % of its energy below)");
   if (m.meshed_blocks > 0)
     m.notes.push_back(msg(head, ": the shortest shear wave resolved by ", kElementsPerWavelength,
                           " elements needs elements of ", figure(smallest), " m; ", m.meshed_blocks,
@@ -89,14 +89,14 @@ WaveModel choose_wave_model(const WorldState& w, const LoadFrequency& load) {
     m.notes.push_back(msg(head, ": every block (the largest edge ", figure(largest_block), " m) is within the ",
                           figure(h_min), " m that resolves it; first-order blocks kept"));
   if (m.active && c.mesh_mass == MeshMass::Auto && c.integrator == Integrator::Auto)
-    m.notes.push_back("the elements' mass lumped at their corners and Newmark's average acceleration: no "
-                      "wrong-sign lobe ahead of a pulse (docs/waves.md)");
+    m.notes.push_back(
+        "the elements' mass lumped at their corners and Newmark's average acceleration: no "
+        "wrong-sign lobe ahead of a pulse (docs/waves.md)");
 
   // Choices by hand that carry a precursor or under-resolve the load.
   if (c.mesh_size == 0 && largest_block > h_min * (1 + 1e-9))
     m.warnings.push_back(msg("mesh_size = 0 keeps first-order blocks (the largest edge ", figure(largest_block),
-                             " m) under a dynamic load of ", figure(f), " Hz, which needs elements of ",
-                             figure(h_min),
+                             " m) under a dynamic load of ", figure(f), " Hz, which needs elements of ", figure(h_min),
                              " m: first-order blocks send a wrong-sign lobe of 2-16 % (Shi's scheme) to 4-23 % "
                              "(newmark) of the amplitude ahead of each pulse (docs/waves.md, \"The precursor\"); "
                              "leave mesh_size out to mesh them"));
@@ -106,18 +106,19 @@ WaveModel choose_wave_model(const WorldState& w, const LoadFrequency& load) {
     bool used = false;
     for (std::size_t b = 0; b < w.blocks.count(); ++b) used = used || w.blocks.material[b] == static_cast<int>(r);
     if (used && hand > need * (1 + 1e-9))
-      m.warnings.push_back(
-          msg("mesh_size = ", hand, " m (rock material ", r, ") under-resolves the dynamic load of ", figure(f),
-              " Hz: ", figure(s_wave_speed(w.rocks[r]) / (f * hand)), " elements per shear wavelength where ",
-              kElementsPerWavelength,
-              " keep the first peak of a pulse within 2 % (docs/waves.md, \"Element size\"); mesh_size = ",
-              figure(need), " or less, or leave it out"));
+      m.warnings.push_back(msg(
+          "mesh_size = ", hand, " m (rock material ", r, ") under-resolves the dynamic load of ", figure(f),
+          " Hz: ", figure(s_wave_speed(w.rocks[r]) / (f * hand)), " elements per shear wavelength where ",
+          kElementsPerWavelength,
+          " keep the first peak of a pulse within 2 % (docs/waves.md, \"Element size\"); mesh_size = ", figure(need),
+          " or less, or leave it out"));
   }
   if (m.active && c.mesh_mass == MeshMass::Consistent)
-    m.warnings.push_back("mesh_mass = \"consistent\" under a dynamic load: its short waves run faster than the "
-                         "rock's waves, a wrong-sign lobe of up to 9 % of the amplitude ahead of a pulse at 0.2 m "
-                         "elements, 3 % at 0.05 m (docs/waves.md, \"The precursor\"); leave mesh_mass out for the "
-                         "lumped mass");
+    m.warnings.push_back(
+        "mesh_mass = \"consistent\" under a dynamic load: its short waves run faster than the "
+        "rock's waves, a wrong-sign lobe of up to 9 % of the amplitude ahead of a pulse at 0.2 m "
+        "elements, 3 % at 0.05 m (docs/waves.md, \"The precursor\"); leave mesh_mass out for the "
+        "lumped mass");
   if (m.active && c.integrator == Integrator::Shi)
     m.warnings.push_back(msg("integrator = \"shi\" under a dynamic load of ", figure(f),
                              " Hz: Shi's scheme damps a wave of angular frequency w by about exp(-w^2 dt t / 4), "

@@ -53,11 +53,11 @@ struct WaveModel {
   // The blocks were meshed for the load and are stepped with wave_scheme()
   // where mesh_mass and integrator are "auto".
   bool active = false;
-  double frequency = 0;  // Hz: the highest of the dynamic loads (0: none)
-  std::string source;    // the load that set it
-  double element_size = 0;          // m: the smallest rock's (0 when not active)
-  int meshed_blocks = 0;            // first-order blocks meshed in place
-  std::vector<std::string> notes;   // what was decided, for the run log
+  double frequency = 0;               // Hz: the highest of the dynamic loads (0: none)
+  std::string source;                 // the load that set it
+  double element_size = 0;            // m: the smallest rock's (0 when not active)
+  int meshed_blocks = 0;              // first-order blocks meshed in place
+  std::vector<std::string> notes;     // what was decided, for the run log
   std::vector<std::string> warnings;  // choices by hand that carry a precursor or under-resolve the load
   template <class Archive>
   void fields(Archive& ar) {

@@ -34,7 +34,7 @@ const WaveModel& World::decide_wave_model(std::span<const LoadSignal> script_sig
   WaveModel wave = choose_wave_model(s_, dynamic_load_frequency(s_, script_signals));
   const std::vector<double> sizes = meshes_for_waves(s_, wave.frequency);
   if (wave.meshed_blocks > 0) {
-    s_.remeshing = mesh_in_place(s_.blocks, sizes, s_.rocks);
+    s_.remeshing = mesh_in_place(s_.blocks, sizes, s_.rocks, s_.joints, s_.contact_spring());
     s_.remeshing.blocks = &s_.blocks;
     s_.loads.remesh(s_.remeshing);
     s_.boundaries.remesh(s_.remeshing, s_.rocks, s_.controls.plane);

@@ -59,6 +59,8 @@ struct WorldState {
   // Δt from the paper's Eqs. 1–3 with a = 0.05 and b = 0.177:
   // min(a·h_min/C_P, 2b·sqrt(m_min/g0)).
   double suggested_time_step() const;
+  // The contact spring g0 (N/m): the controls', or 50 × the stiffest rock's E.
+  double contact_spring() const;
 };
 
 }  // namespace dda

@@ -67,22 +67,6 @@ if second_order ~= "" then
   end
   wave.scheme = nil
 end
--- The third pass: the engine's default wave model (docs/waves.md: the blocks
--- meshed for the pulse, lumped mass, Newmark, the joints' stiffness kept)
--- on the figures with an exact reference (Figs. 3 and 4), beside the other
--- two (--set default_figures= to leave it out).
-local default_figures = tostring(dda.param("default_figures", "fig3_joint_stiffness,fig4_frequency"))
-local figs3 = {}
-if default_figures ~= "" then
-  wave.scheme = { default = true, suffix = "_default" }
-  for name in default_figures:gmatch("[^,]+") do
-    if wanted:find(name, 1, true) then
-      local fig = dofile(here .. "/" .. name .. ".lua")
-      figs3[fig.name] = fig
-    end
-  end
-  wave.scheme = nil
-end
 
 os.execute(string.format("mkdir -p '%s/figures'", docs))
 local function copy(src, dst)
@@ -306,15 +290,6 @@ if second_order ~= "" then
     "blocks' share shrinks with their size (Model 1's joints in 0.2, 0.1 and 0.05 m blocks) and where the " ..
     "precursor ahead of each pulse comes from: docs/time_integration.md.")
   w("")
-  if next(figs3) then
-    w("Figs. 3 and 4 also with the engine's defaults, the \"default\" column (docs/waves.md): nothing of the " ..
-      "paper's choices pinned, so the blocks are meshed for the pulse (elements of about 0.1 m: 8000), with their " ..
-      "mass lumped, stepped with Newmark's average acceleration, each joint keeping the stiffness its first-order " ..
-      "blocks had (2 g0 / 0.2 m), the default contact law; dt = 2e-6 s. What it adds to the exact 1-D column is " ..
-      "the 2-D bar's own physics (its lateral inertia, ν = 0.25: docs/waves.md, \"The 2-D bar\"), with no " ..
-      "precursor and no numerical damping.")
-    w("")
-  end
   for _, fig in ipairs(figs) do
     local fig2 = figs2[fig.name]
     if not fig2 and failed2[fig.file] then
@@ -328,30 +303,19 @@ if second_order ~= "" then
     if fig2 then
       w("### " .. fig.title)
       w("")
-      local fig3 = figs3[fig.name]
-      if fig3 then
-        w("| quantity | paper | `shi` | `" .. second_order .. "` | default | exact |")
-        w("|---|---:|---:|---:|---:|---:|")
-      else
-        w("| quantity | paper | `shi` | `" .. second_order .. "` | exact |")
-        w("|---|---:|---:|---:|---:|")
-      end
-      local second, third = {}, {}
+      w("| quantity | paper | `shi` | `" .. second_order .. "` | exact |")
+      w("|---|---:|---:|---:|---:|")
+      local second = {}
       for _, r in ipairs(fig2.rows) do second[r.quantity] = r.ours end
-      for _, r in ipairs(fig3 and fig3.rows or {}) do third[r.quantity] = r.ours end
       for _, r in ipairs(fig.rows) do
         local x = fig.exact[r.quantity]
         local function f(v) return v and string.format("%.4g", v) or "–" end
-        local q = r.quantity .. (r.unit ~= "" and " (" .. r.unit .. ")" or "")
-        if fig3 then
-          w(string.format("| %s | %s | %s | %s | %s | %s |", q, f(r.paper), f(r.ours), f(second[r.quantity]),
-                          f(third[r.quantity]), f(x)))
-        else
-          w(string.format("| %s | %s | %s | %s | %s |", q, f(r.paper), f(r.ours), f(second[r.quantity]), f(x)))
-        end
-        local function g(v) return v and string.format("%.6g", v) or "" end
-        scheme_rows[#scheme_rows + 1] = string.format("%s,%s,%s,%s,%s,%s,%s,%s", fig.name, r.quantity, g(r.paper),
-          g(r.ours), g(second[r.quantity]), g(third[r.quantity]), g(x), r.unit)
+        w(string.format("| %s | %s | %s | %s | %s |", r.quantity .. (r.unit ~= "" and " (" .. r.unit .. ")" or ""),
+                        f(r.paper), f(r.ours), f(second[r.quantity]), f(x)))
+        scheme_rows[#scheme_rows + 1] = string.format("%s,%s,%s,%s,%s,%s,%s", fig.name, r.quantity,
+          r.paper and string.format("%.6g", r.paper) or "", string.format("%.6g", r.ours),
+          second[r.quantity] and string.format("%.6g", second[r.quantity]) or "", x and string.format("%.6g", x) or "",
+          r.unit)
       end
       w("")
       -- Each attenuation with an exact value, split into its shares.
@@ -381,12 +345,6 @@ if second_order ~= "" then
           w("")
         end
       end
-      for _, p in ipairs(fig3 and fig3.plots or {}) do
-        local base = p:match("([^/]+)$")
-        copy(p, docs .. "/figures/" .. base)
-        w(string.format("![%s](figures/%s)", base, base))
-        w("")
-      end
     end
   end
 end
@@ -399,8 +357,7 @@ for _, r in ipairs(rows) do lines[#lines + 1] = wave.csv_row(r) end
 for _, l in ipairs(section4_csv) do lines[#lines + 1] = l end
 docs_output.write(docs .. "/validation.csv", "figure,quantity,paper,ours,unit\n" .. table.concat(lines, "\n") .. "\n")
 if #scheme_rows > 0 then
-  docs_output.write(docs .. "/validation_schemes.csv", "figure,quantity,paper,shi," .. second_order ..
-                    ",default,exact,unit\n" ..
+  docs_output.write(docs .. "/validation_schemes.csv", "figure,quantity,paper,shi," .. second_order .. ",exact,unit\n" ..
                     table.concat(scheme_rows, "\n") .. "\n")
 end
 print(string.format("wrote %s/validation.md, %s/validation.csv (%d rows; targets %d passed, %d failed)",

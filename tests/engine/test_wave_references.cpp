@@ -63,7 +63,8 @@ TEST(WaveReferences, PlateModesMeetTheSurfaceConditionsAndFrasersBiorthogonality
     EXPECT_LT(std::abs(face.sxy), 1e-9 * std::abs(middle.sxx)) << m;
     for (std::size_t n = 0; n < 5; ++n)
       if (m != n)
-        EXPECT_LT(std::abs(product(ms[m], ms[n])), 1e-5 * std::sqrt(std::abs(product(ms[m], ms[m]) * product(ms[n], ms[n]))))
+        EXPECT_LT(std::abs(product(ms[m], ms[n])),
+                  1e-5 * std::sqrt(std::abs(product(ms[m], ms[m]) * product(ms[n], ms[n]))))
             << m << ", " << n;
   }
 }
