@@ -110,7 +110,7 @@ int m_start(lua_State* L) {
   if (m.control().active())
     fail("m:start: the model has a run in progress (", to_string(m.control().state()),
          "): m:wait() for its end, or m:stop() it first");
-  const Options o(L, 2, "m:start", {"time", "steps", "every", "callback", "realtime"});
+  const Options o(L, 2, "m:start", run_plan_options());
   start_background_run(L, 1, m, read_run_plan(o));
   return 0;
 }
@@ -197,22 +197,22 @@ int m_running(lua_State* L) {
 void register_background(lua_State* L) {
   static const Method methods[] = {
       {"start", guarded<m_start>,
-       "m:start{time = t | steps = n, every = N, callback = f, realtime = r}: the run of m:run{...} on a thread of its "
-       "own; the console stays up. While it runs the model can be read (each call sees it between two steps) but not "
-       "changed: m:pause() first"},
+       "m:start{...}\nThe run of m:run{...} on a thread of its own; the console stays up. While it runs the model "
+       "can be read (each call sees it between two steps) but not changed: m:pause() first.",
+       run_plan_options()},
       {"pause", guarded<m_pause>,
-       "m:pause() → t, step, paused: pauses the background run (no step begins after it returns; paused: false when "
-       "none was going); loads, boundaries, controls and outputs can then be changed"},
-      {"resume", guarded<m_resume>, "m:resume() → whether the paused background run goes on now"},
-      {"stop", guarded<m_stop>, "m:stop() → t, step: ends the background run at its next step boundary"},
+       "m:pause() → t, step, paused\nPauses the background run: no step begins after it returns (paused: false "
+       "when none was going); loads, boundaries, controls and outputs can then be changed."},
+      {"resume", guarded<m_resume>, "m:resume() → boolean\nWhether the paused background run goes on now."},
+      {"stop", guarded<m_stop>, "m:stop() → t, step\nEnds the background run at its next step boundary."},
       {"wait", guarded<m_wait>,
-       "m:wait() → t, step: waits for the background run to end (raises its error); Ctrl-C pauses it and stops the "
-       "wait"},
+       "m:wait() → t, step\nWaits for the background run to end (raises its error); Ctrl-C pauses it and stops "
+       "the wait."},
       {"running", guarded<m_running>,
-       "m:running() → boolean, state: whether a background run is running; state is \"running\", \"paused\", "
-       "\"finished\", \"failed\", \"stopped\" or \"idle\""},
+       "m:running() → boolean, state\nWhether a background run is running; state is \"running\", \"paused\", "
+       "\"finished\", \"failed\", \"stopped\" or \"idle\"."},
       {}};
-  add_model_methods(L, methods);
+  add_model_methods(L, methods, "Background runs");
 }
 
 }  // namespace dda::script

@@ -248,7 +248,7 @@ int edit_distance(std::string_view a, std::string_view b) {
 
 // ---- option tables ---------------------------------------------------------------
 
-Options::Options(lua_State* L, int idx, std::string call, std::span<const char* const> known, bool allow_array)
+Options::Options(lua_State* L, int idx, std::string call, Names known, bool allow_array)
     : L_(L), idx_(lua_absindex(L, idx)), call_(std::move(call)) {
   if (lua_type(L, idx_) != LUA_TTABLE) fail(call_, ": expected a table of options {...}, got ", type_of(L, idx_));
   const auto n = lua_rawlen(L, idx_);
@@ -258,15 +258,15 @@ Options::Options(lua_State* L, int idx, std::string call, std::span<const char* 
     if (lua_type(L, -1) == LUA_TSTRING) {
       const std::string key = lua_tostring(L, -1);
       bool ok = false;
-      for (const char* k : known) ok = ok || key == k;
+      for (const Name& k : known) ok = ok || key == k.name;
       if (!ok) {
         lua_pop(L, 1);
         std::string list, best;
         int best_d = 3;
-        for (const char* k : known) {
-          list += list.empty() ? k : std::string(", ") + k;
-          const int d = edit_distance(key, k);
-          if (d < best_d) best_d = d, best = k;
+        for (const Name& k : known) {
+          list += list.empty() ? k.name : std::string(", ") + k.name;
+          const int d = edit_distance(key, k.name);
+          if (d < best_d) best_d = d, best = k.name;
         }
         fail(call_, ": unknown option '", key, "'", best.empty() ? "" : " (did you mean '" + best + "'?)",
              "; known options: ", list.empty() ? "none" : list);

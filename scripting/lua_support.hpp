@@ -3,7 +3,7 @@
 // tables strictly, and parsing the value shapes every wrapper accepts (points,
 // polygons, boxes, time histories).
 //
-// Error discipline (design.md §2, LÖVE's luax_catchexcept): code behind a Lua
+// Error discipline (as LÖVE's luax_catchexcept): code behind a Lua
 // C function never calls lua_error / luaL_error itself. It throws a C++
 // exception (ScriptError for a user mistake, LuaCallError for an error raised
 // by a Lua function we called with lua_pcall, anything else from the engine);
@@ -36,6 +36,13 @@ class ScriptError : public std::runtime_error {
 
 // A run stopped at a step boundary because the user pressed Ctrl-C.
 class Interrupted : public ScriptError {
+ public:
+  using ScriptError::ScriptError;
+};
+
+// dda run --list-params: the script has read its parameters (it reached its
+// first step, or the first file it would write) and is stopped there.
+class ParamsOnlyStop : public ScriptError {
  public:
   using ScriptError::ScriptError;
 };
@@ -103,15 +110,27 @@ std::vector<Vec2> box_polygon(const std::array<double, 4>& b);
 double require_positive(double v, std::string_view call, std::string_view what);
 double require_non_negative(double v, std::string_view call, std::string_view what);
 
+// ---- Names of the API -------------------------------------------------------
+// One name of the Lua API that is not a function: an option of an options
+// table, a field of an object, a key of a table a function returns. `doc`
+// says what it is, with its unit (Markdown); `fallback`, for an option, what
+// leaving it out means (nullptr: it is required). The same tables read the
+// options and document them (help(), docs/lua_api*.md), so an option cannot
+// be accepted without its documentation.
+struct Name {
+  const char* name = nullptr;
+  const char* doc = nullptr;
+  const char* fallback = nullptr;
+};
+using Names = std::span<const Name>;
+
 // ---- Option tables ---------------------------------------------------------
 // Wraps the table at `idx`. Every string key must be one of `known`; integer
 // keys 1..n are accepted only with allow_array (e.g. a polygon given inline).
 // Values are read with raw access (no metamethods run).
 class Options {
  public:
-  Options(lua_State* L, int idx, std::string call, std::span<const char* const> known, bool allow_array = false);
-  Options(lua_State* L, int idx, std::string call, std::initializer_list<const char*> known, bool allow_array = false)
-      : Options(L, idx, std::move(call), std::span<const char* const>(known.begin(), known.size()), allow_array) {}
+  Options(lua_State* L, int idx, std::string call, Names known, bool allow_array = false);
 
   lua_State* state() const { return L_; }
   int index() const { return idx_; }

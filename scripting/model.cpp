@@ -23,10 +23,18 @@ namespace {
 struct FieldName {
   Field field;
   const char* name;
+  const char* doc;
 };
-constexpr FieldName kFields[] = {{Field::Sxx, "sxx"}, {Field::Syy, "syy"}, {Field::Txy, "txy"},
-                                 {Field::Vx, "vx"},   {Field::Vy, "vy"},   {Field::Ux, "ux"},
-                                 {Field::Uy, "uy"},   {Field::X, "x"},     {Field::Y, "y"}};
+constexpr FieldName kFields[] = {
+    {Field::Sxx, "sxx", "σxx of the block under the point (Pa, tension positive)"},
+    {Field::Syy, "syy", "σyy (Pa)"},
+    {Field::Txy, "txy", "τxy (Pa)"},
+    {Field::Vx, "vx", "x velocity of the material point (m/s)"},
+    {Field::Vy, "vy", "y velocity (m/s)"},
+    {Field::Ux, "ux", "x displacement of the material point since the start (or since m:settle) (m)"},
+    {Field::Uy, "uy", "y displacement (m)"},
+    {Field::X, "x", "x of the material point now (m)"},
+    {Field::Y, "y", "y of the material point now (m)"}};
 
 constexpr int kEnergyFieldCount = static_cast<int>(std::size(kEnergyTerms));
 std::string energy_field_name(int k) { return std::string("energy_") + kEnergyTerms[k].name; }
@@ -50,6 +58,21 @@ std::optional<Field> parse_field(std::string_view name) {
   for (int k = 0; k < kEnergyFieldCount; ++k)
     if (name == energy_field_name(k)) return static_cast<Field>(static_cast<int>(Field::EnergyFirst) + k);
   return std::nullopt;
+}
+
+Names field_names() {
+  static const std::vector<Name> names = [] {
+    static std::vector<std::string> energy_docs;
+    std::vector<Name> n;
+    for (const auto& f : kFields) n.push_back({f.name, f.doc});
+    for (int k = 0; k < kEnergyFieldCount; ++k)
+      energy_docs.push_back(
+          msg("the model's energy budget since the first step (J/m), whatever the point: ", kEnergyTerms[k].doc));
+    for (int k = 0; k < kEnergyFieldCount; ++k)
+      n.push_back({field_name(static_cast<Field>(static_cast<int>(Field::EnergyFirst) + k)), energy_docs[k].c_str()});
+    return n;
+  }();
+  return names;
 }
 
 std::string field_list() {
@@ -340,11 +363,13 @@ void ScriptModel::record(Monitor& m) {
 }
 
 double ScriptModel::load_time() const {
-  // The World takes Δt = min(current Δt, g1), g1 from the controls or
-  // estimated from Eqs. 1–3 (see Stepper::derive_automatic_controls).
+  // The World takes Δt = min(current Δt, g1), g1 from the controls or the
+  // default rule (see Stepper::derive_automatic_controls); a settling step
+  // holds the time.
   const World& w = *world_;
+  if (w.settling()) return w.time();
   double g1 = w.controls().g1;
-  if (!(g1 > 0)) g1 = w.suggested_time_step();
+  if (!(g1 > 0)) g1 = w.default_time_step().dt;
   double dt = w.current_dt();
   if (!(dt > 0) || dt > g1) dt = g1;
   return w.time() + dt;
@@ -377,7 +402,7 @@ const WaveModel& ScriptModel::decide_wave_model(lua_State* L, double window) {
   // The functions sampled as the steps will apply them, every Δt (at most
   // 65,536 samples), over the run and at least 1000 steps: a short first run
   // must not cut a pulse short.
-  const double dt = world_->controls().g1 > 0 ? world_->controls().g1 : world_->suggested_time_step();
+  const double dt = world_->controls().g1 > 0 ? world_->controls().g1 : world_->default_time_step().dt;
   window = std::max(window, 1000 * dt);
   const int count = static_cast<int>(std::min(65536.0, std::ceil(window / dt)));
   std::vector<LoadSignal> signals;
@@ -440,6 +465,20 @@ StepStats ScriptModel::step(lua_State* L) {
     }
   apply_loads(L, load_time());
   for (auto& h : hooks_) h->before_step(*world_);
+  const StepStats st = counted_step();
+  const long n = world_->step_count();
+  for (auto& m : monitors_)
+    if (n % m->every == 0) record(*m);
+  for (auto& h : hooks_) h->after_step(*world_);
+  return st;
+}
+
+StepStats ScriptModel::settle_step(lua_State* L) {
+  apply_loads(L, load_time());
+  return counted_step();
+}
+
+StepStats ScriptModel::counted_step() {
   const auto t0 = std::chrono::steady_clock::now();
   const StepStats st = world_->step();
   totals_.wall_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
@@ -448,10 +487,6 @@ StepStats ScriptModel::step(lua_State* L) {
   totals_.open_close_iterations += st.open_close_iterations;
   totals_.cg_iterations += st.cg_iterations;
   totals_.patch_iterations += st.patch_iterations;
-  const long n = world_->step_count();
-  for (auto& m : monitors_)
-    if (n % m->every == 0) record(*m);
-  for (auto& h : hooks_) h->after_step(*world_);
   return st;
 }
 

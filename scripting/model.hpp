@@ -34,7 +34,8 @@ class BackgroundRun;
 enum class Field : std::uint8_t { Sxx, Syy, Txy, Vx, Vy, Ux, Uy, X, Y, EnergyFirst };
 const char* field_name(Field f);
 std::optional<Field> parse_field(std::string_view name);
-std::string field_list();  // "sxx, syy, txy, vx, vy, ux, uy, x, y"
+std::string field_list();  // "sxx, syy, txy, vx, vy, ux, uy, x, y, energy_kinetic, ..."
+Names field_names();       // each with what it is
 
 struct Monitor {
   std::string name;
@@ -244,6 +245,10 @@ class ScriptModel {
   // (on L, serially), World::step(), record the monitors. L is used only
   // for loads that are Lua functions (loads_call_lua()).
   StepStats step(lua_State* L);
+  // One settling step (world/settle.hpp: static, the time held; the World's
+  // settling() guard must be held): the loads at the held time, no monitor
+  // records (settling is not part of the run's history).
+  StepStats settle_step(lua_State* L);
   bool loads_call_lua() const;
   // dda run --threads N: the thread count every step uses, whatever the
   // script sets (−1: the controls').
@@ -289,6 +294,8 @@ class ScriptModel {
   double last_checkpoint_time = 0;  // --checkpoint-every T s: the time of the last one
 
  private:
+  // World::step() with the totals kept.
+  StepStats counted_step();
   void apply_loads(lua_State* L, double t);
   void record(Monitor& m);
   void hand_over(ScriptPressure& p, lua_State* L);

@@ -54,7 +54,13 @@ int dda_load(lua_State* L) {
 int dda_param(lua_State* L) {
   const std::string name = check_string(L, 1, "dda.param", "argument 1 (name)");
   Session& s = session(L);
-  s.params_read.insert(name);
+  s.params_read.emplace(
+      name, lua_isnoneornil(L, 2) ? std::string("nil") : [&] {
+        lua_pushvalue(L, 2);
+        std::string text = luaL_tolstring(L, -1, nullptr);
+        lua_pop(L, 2);
+        return text;
+      }());
   const auto it = s.params.find(name);
   if (it == s.params.end()) {
     lua_settop(L, 2);
@@ -168,28 +174,33 @@ int open_module(lua_State* L) {
     lua_pop(L, 1);
   }
   static const Method functions[] = {
-      {"model", guarded<dda_model>, "dda.model{plane = \"stress\" | \"strain\", g0 = ..., ...controls} → Model"},
+      {"model", guarded<dda_model>,
+       "dda.model{...} → Model\nA new, empty model; its options are the controls (e.g. dda.model{ plane = "
+       "\"strain\", gravity = {0, -9.81} }).",
+       control_option_names()},
       {"load", guarded<dda_load>,
-       "dda.load(file) → Model: the model of a checkpoint (m:save, dda run --checkpoint-every), as it was when "
+       "dda.load(file) → Model\nThe model of a checkpoint (m:save, dda run --checkpoint-every), as it was when "
        "saved; it steps on exactly as the saved one would have. A relative name not found as given is looked for in "
        "the output folder. Loads given as Lua functions keep their last value (a warning names each); monitors and "
        "frame sequences are the script's to add again."},
       {"param", guarded<dda_param>,
-       "dda.param(name, default) → the --set NAME=VALUE value (a number when it reads as one, true/false when the "
-       "default is a boolean), else the default."},
+       "dda.param(name, default) → value\nThe --set NAME=VALUE value (a number when it reads as one, true/false "
+       "when the default is a boolean), else the default. `dda run SCRIPT --list-params` lists what a script "
+       "reads."},
       {"out_dir", guarded<dda_out_dir>, "dda.out_dir() → the output folder (--out, default \"out\")"},
       {"output", guarded<dda_output>,
-       "dda.output(name) → path of `name` in the output folder (created if needed), for scripts that write their own "
-       "files with io.open."},
+       "dda.output(name) → path\nThe path of `name` in the output folder (created if needed), for scripts that "
+       "write their own files with io.open."},
       {"help", guarded<dda_help>,
-       "dda.help([x]) (help in the console): help() an overview, help(f) a function in full (help(m.step)), help(x) "
-       "what an object offers (help(m)), help(\"name\") every function of that name"},
+       "dda.help([x])\n`help` in the console: help() an overview, help(f) a function in full (help(m.step)), "
+       "help(x) what an object offers (help(m)), help(\"name\") every function of that name."},
       {"result", guarded<dda_result>,
-       "dda.result{name = value, ...}: results of the run (numbers, strings, booleans), written to <out>/result.csv "
-       "when `dda run` ends; dda sweep gathers them into its summary table. Later calls add to and replace names."},
+       "dda.result{name = value, ...}\nResults of the run (numbers, strings, booleans), written to "
+       "<out>/result.csv when `dda run` ends; dda sweep gathers them into its summary table. Later calls add to "
+       "and replace names; a script's `return {name = value, ...}` does the same."},
       {}};
   lua_newtable(L);
-  set_methods(L, functions);
+  set_methods(L, functions, "dda");
   register_render_functions(L);
   register_ground_motion_functions(L);
   register_exact_functions(L);

@@ -5,11 +5,13 @@
 #include <lua.hpp>
 
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "session.hpp"
 
-#define DDA_VERSION_TEXT "0.1"
+// DDA_VERSION_TEXT: the project's version (CMake's project(VERSION), a
+// compile definition of the binding).
 
 namespace dda::script {
 
@@ -40,6 +42,9 @@ bool add_results(lua_State* L, int idx, const char* what, std::string& why);
 
 // help([x]): prints the API's documentation (help.cpp).
 int dda_help(lua_State* L);
+// The API reference, from the same tables as help(): (file name in docs/,
+// Markdown) for each page (docs/lua_api.md, lua_api_model.md, ...).
+std::vector<std::pair<std::string, std::string>> api_reference_pages(lua_State* L);
 
 // Warnings for --set names the script never read (typos), one line each.
 std::vector<std::string> unused_params(const Session& s);

@@ -96,6 +96,13 @@ void check_interrupt(const char* where_text) {
   throw Interrupted(msg("interrupted (Ctrl-C) ", where_text));
 }
 
+void stop_if_params_only(lua_State* L, const char* what) {
+  Session& s = session(L);
+  if (!s.params_only) return;
+  s.params_stopped = true;
+  throw ParamsOnlyStop(msg("--list-params: stopped at ", what));
+}
+
 // ---- run log --------------------------------------------------------------------------
 
 void RunLog::open(const std::filesystem::path& path) {

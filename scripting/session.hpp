@@ -71,8 +71,13 @@ struct ResultValue {
 
 struct Session {
   std::filesystem::path out_dir = "out";
-  std::map<std::string, std::string> params;   // --set NAME=VALUE
-  std::set<std::string> params_read;           // names the script asked for
+  std::map<std::string, std::string> params;       // --set NAME=VALUE
+  std::map<std::string, std::string> params_read;  // names the script asked for → their defaults, as text
+  // dda run --list-params: the script runs up to its first stepping call, or
+  // the first file it would write or command it would run, and stops there
+  // (params_stopped then says so): what it read by then is what it reads.
+  bool params_only = false;
+  bool params_stopped = false;
   int threads = -1;                            // --threads N (−1: leave to the script)
   bool quiet = false;                          // --quiet
   ProgressMode progress = ProgressMode::None;  // how stepping shows progress (see ProgressMode)
@@ -83,7 +88,7 @@ struct Session {
   // creates writes a frame every N steps into <out>/frames (frames_2, ... for
   // later models). 0: none.
   long frames_every = 0;
-  std::string frames_field = "sigma_xx";
+  std::string frames_field = "sigma_yy";  // as m:frame{} (render::FrameOptions)
   int frames_width = 1280, frames_height = 720;
   long frames_from = 0, frames_to = -1;  // --frames FROM:TO:EVERY (steps; -1: no end)
   bool frames_range_set = false;         // --frame-range MIN,MAX
@@ -118,6 +123,10 @@ struct Session {
   std::string live_address;
   std::shared_ptr<LiveServer> live;
 };
+
+// --list-params: stops the script at `what` (its first stepping call, its
+// first file written) by raising ParamsOnlyStop.
+void stop_if_params_only(lua_State* L, const char* what);
 
 // Prints "dda: warning: text" on stderr and writes it to the run log of
 // `dda run` (set_run_log; warnings come from places that have no Lua state,

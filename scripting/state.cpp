@@ -166,6 +166,39 @@ void refuse_bytecode(lua_State* L) {
   lua_pop(L, 2);
 }
 
+// dda run --list-params: a file written or a command run stops the script,
+// whose parameters are read by then (their use is the real run's). The
+// closure's upvalues: the library function and its name ("io.open"). No
+// C++ object lives in this frame: it raises and calls Lua directly.
+int stop_before_writing(lua_State* L) {
+  const char* name = lua_tostring(L, lua_upvalueindex(2));
+  bool writes = true;
+  if (std::strcmp(name, "io.open") == 0) writes = std::strpbrk(luaL_optstring(L, 2, "r"), "wa+") != nullptr;
+  if (std::strcmp(name, "io.output") == 0) writes = lua_type(L, 1) == LUA_TSTRING;
+  if (writes) {
+    session(L).params_stopped = true;
+    return luaL_error(L, "--list-params: stopped at %s", name);
+  }
+  lua_pushvalue(L, lua_upvalueindex(1));
+  lua_insert(L, 1);
+  lua_call(L, lua_gettop(L) - 1, LUA_MULTRET);
+  return lua_gettop(L);
+}
+
+void stop_params_only_before_writing(lua_State* L) {
+  static const std::pair<const char*, const char*> writers[] = {{"io", "open"},    {"io", "output"}, {"io", "popen"},
+                                                                {"os", "execute"}, {"os", "remove"}, {"os", "rename"},
+                                                                {"os", "tmpname"}};
+  for (const auto& [library, function] : writers) {
+    lua_getglobal(L, library);
+    lua_getfield(L, -1, function);
+    lua_pushfstring(L, "%s.%s", library, function);
+    lua_pushcclosure(L, stop_before_writing, 2);
+    lua_setfield(L, -2, function);
+    lua_pop(L, 1);
+  }
+}
+
 }  // namespace
 
 int call_with_traceback(lua_State* L, int nargs, int nresults) { return docall(L, nargs, nresults); }
@@ -179,7 +212,9 @@ lua_State* new_state(Session s) {
   lua_pushcfunction(L, script_exit);
   lua_setfield(L, -2, "exit");
   lua_pop(L, 1);
+  const bool params_only = s.params_only;
   set_session(L, std::move(s));
+  if (params_only) stop_params_only_before_writing(L);
   luaL_requiref(L, "dda", open_module, 1);  // package.loaded.dda and the global dda
   lua_pop(L, 1);
   return L;

@@ -112,8 +112,9 @@ class Stepping {
 long begin_stepping_call(lua_State* L, ScriptModel& m, const RunPlan& plan);
 
 // The plan of m:run{...} / m:start{...} from its options (time, steps,
-// every, callback, realtime) (wrap_model.cpp).
+// every, callback, realtime: run_plan_options()) (wrap_model.cpp).
 RunPlan read_run_plan(const Options& o);
+Names run_plan_options();
 
 // The checkpoint file of model number `model` in the output folder.
 std::filesystem::path periodic_checkpoint_path(const std::filesystem::path& out_dir, int model);

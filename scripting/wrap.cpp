@@ -68,35 +68,125 @@ int index_dispatch(lua_State* L) {
 }  // namespace
 
 namespace {
-const char kDocsKey = 0;  // its address keys the documentation table in the registry
-}  // namespace
 
-void push_docs(lua_State* L) {
-  if (lua_rawgetp(L, LUA_REGISTRYINDEX, &kDocsKey) == LUA_TTABLE) return;
+// registry[&kApiKey] = {docs = {[function] = Method*}, owners = {"dda", ...},
+//                       [owner] = {Method*, ...}, topics = {[Method*] = topic},
+//                       fields = {[owner] = {data, size}}}
+const char kApiKey = 0;
+
+void push_api(lua_State* L) {
+  if (lua_rawgetp(L, LUA_REGISTRYINDEX, &kApiKey) == LUA_TTABLE) return;
   lua_pop(L, 1);
+  lua_createtable(L, 0, 4);
   lua_newtable(L);
+  lua_setfield(L, -2, "docs");
+  lua_newtable(L);
+  lua_setfield(L, -2, "owners");
+  lua_newtable(L);
+  lua_setfield(L, -2, "fields");
+  lua_newtable(L);
+  lua_setfield(L, -2, "topics");
   lua_pushvalue(L, -1);
-  lua_rawsetp(L, LUA_REGISTRYINDEX, &kDocsKey);
+  lua_rawsetp(L, LUA_REGISTRYINDEX, &kApiKey);
 }
 
-void set_methods(lua_State* L, const Method* methods) {
+// Pushes api[owner] (created, and owner appended to api.owners, on first use).
+void push_owner(lua_State* L, const char* owner) {
+  push_api(L);
+  if (lua_getfield(L, -1, owner) != LUA_TTABLE) {
+    lua_pop(L, 1);
+    lua_newtable(L);
+    lua_pushvalue(L, -1);
+    lua_setfield(L, -3, owner);
+    lua_getfield(L, -2, "owners");
+    lua_pushstring(L, owner);
+    lua_rawseti(L, -2, static_cast<lua_Integer>(lua_rawlen(L, -2)) + 1);
+    lua_pop(L, 1);
+  }
+  lua_remove(L, -2);
+}
+
+}  // namespace
+
+void set_methods(lua_State* L, const Method* methods, const char* owner, const char* topic) {
   const int t = lua_absindex(L, -1);
-  push_docs(L);
+  if (topic) {
+    push_api(L);
+    lua_getfield(L, -1, "topics");
+    for (const Method* m = methods; m && m->name; ++m) {
+      lua_pushstring(L, topic);
+      lua_rawsetp(L, -2, m);
+    }
+    lua_pop(L, 2);
+  }
+  push_owner(L, owner);
+  push_api(L);
+  lua_getfield(L, -1, "docs");
+  lua_remove(L, -2);
   for (const Method* m = methods; m && m->name; ++m) {
+    DDA_ASSERT(m->doc != nullptr, "a function of the API without its documentation");
     lua_pushcfunction(L, m->func);
     lua_pushvalue(L, -1);
     lua_setfield(L, t, m->name);
-    lua_pushstring(L, m->doc ? m->doc : m->name);
-    lua_rawset(L, -3);  // docs[function] = text
+    lua_pushlightuserdata(L, const_cast<Method*>(m));
+    lua_rawset(L, -3);  // docs[function] = Method*
+    lua_pushlightuserdata(L, const_cast<Method*>(m));
+    lua_rawseti(L, -3, static_cast<lua_Integer>(lua_rawlen(L, -3)) + 1);
   }
-  lua_pop(L, 1);
+  lua_pop(L, 2);
+}
+
+const Method* find_method(lua_State* L, int idx) {
+  idx = lua_absindex(L, idx);
+  push_api(L);
+  lua_getfield(L, -1, "docs");
+  lua_pushvalue(L, idx);
+  lua_rawget(L, -2);
+  const auto* m = static_cast<const Method*>(lua_touserdata(L, -1));
+  lua_pop(L, 3);
+  return m;
+}
+
+std::vector<ApiSection> api_sections(lua_State* L) {
+  std::vector<ApiSection> out;
+  push_api(L);
+  lua_getfield(L, -1, "owners");
+  const auto n = static_cast<lua_Integer>(lua_rawlen(L, -1));
+  for (lua_Integer i = 1; i <= n; ++i) {
+    lua_rawgeti(L, -1, i);
+    ApiSection section;
+    section.owner = lua_tostring(L, -1);
+    lua_getfield(L, -3, section.owner.c_str());
+    const auto count = static_cast<lua_Integer>(lua_rawlen(L, -1));
+    lua_getfield(L, -4, "topics");
+    for (lua_Integer k = 1; k <= count; ++k) {
+      lua_rawgeti(L, -2, k);
+      const auto* m = static_cast<const Method*>(lua_touserdata(L, -1));
+      section.methods.push_back(m);
+      lua_rawgetp(L, -2, m);
+      section.topics.push_back(lua_isstring(L, -1) ? lua_tostring(L, -1) : "");
+      lua_pop(L, 2);
+    }
+    lua_pop(L, 2);
+    lua_getfield(L, -3, "fields");
+    if (lua_getfield(L, -1, section.owner.c_str()) == LUA_TTABLE) {
+      lua_rawgeti(L, -1, 1);
+      lua_rawgeti(L, -2, 2);
+      section.fields = Names(static_cast<const Name*>(lua_touserdata(L, -2)), lua_tointeger(L, -1));
+      lua_pop(L, 2);
+    }
+    lua_pop(L, 3);
+    out.push_back(std::move(section));
+  }
+  lua_pop(L, 2);
+  return out;
 }
 
 void define_type(lua_State* L, const char* type, const Method* methods, const luaL_Reg* meta,
-                 lua_CFunction index_fallback) {
+                 lua_CFunction index_fallback, Names fields) {
   luaL_newmetatable(L, type);
   lua_newtable(L);
-  if (methods) set_methods(L, methods);
+  set_methods(L, methods, type);
   lua_pushvalue(L, -1);
   lua_setfield(L, -3, "__methods");
   if (index_fallback) {
@@ -112,16 +202,29 @@ void define_type(lua_State* L, const char* type, const Method* methods, const lu
   lua_pushstring(L, type);
   lua_setfield(L, -2, "__metatable");
   lua_pop(L, 1);
+  if (!fields.empty()) {
+    push_api(L);
+    lua_getfield(L, -1, "fields");
+    lua_createtable(L, 2, 0);
+    lua_pushlightuserdata(L, const_cast<Name*>(fields.data()));
+    lua_rawseti(L, -2, 1);
+    lua_pushinteger(L, static_cast<lua_Integer>(fields.size()));
+    lua_rawseti(L, -2, 2);
+    lua_setfield(L, -2, type);
+    lua_pop(L, 2);
+  }
 }
 
-void add_methods(lua_State* L, const char* type, const Method* methods) {
+void add_methods(lua_State* L, const char* type, const Method* methods, const char* topic) {
   luaL_getmetatable(L, type);
   lua_getfield(L, -1, "__methods");
-  set_methods(L, methods);
+  set_methods(L, methods, type, topic);
   lua_pop(L, 2);
 }
 
-void add_model_methods(lua_State* L, const Method* methods) { add_methods(L, kModelType, methods); }
+void add_model_methods(lua_State* L, const Method* methods, const char* topic) {
+  add_methods(L, kModelType, methods, topic);
+}
 
 // ---- models ---------------------------------------------------------------------------
 

@@ -13,6 +13,7 @@
 
 #include <cstdint>
 #include <span>
+#include <string>
 #include <string_view>
 #include <vector>
 
@@ -47,29 +48,46 @@ inline BlockId* set_blocks(Handle* h) { return reinterpret_cast<BlockId*>(h + 1)
 inline EdgeRef* set_edges(Handle* h) { return reinterpret_cast<EdgeRef*>(h + 1); }
 
 // ---- type registration -------------------------------------------------------
-// A function of the API with its documentation: the first line is the call
-// and what it returns, as help() lists it; help(f) prints all of it. The
-// same tables register the functions and their help, so the two cannot
-// drift. Arrays end with {}.
+// A function of the API with its documentation. `doc`: the call and what it
+// returns ("{...}" there stands for the names of its options), then, after a
+// line break, what it does (Markdown). `options`: the options table it
+// takes, read through these same Names (Options), so it accepts exactly
+// what is documented; `returns`: the keys of the table it returns. help()
+// and the reference (docs/lua_api*.md, api_reference_pages) come from these
+// tables, so the two cannot drift. Arrays end with {}.
 struct Method {
   const char* name = nullptr;
   lua_CFunction func = nullptr;
   const char* doc = nullptr;
+  Names options = {};
+  Names returns = {};
 };
 
-// Registers `methods` into the table on top of the stack, and their docs.
-void set_methods(lua_State* L, const Method* methods);
-// Pushes the table function → documentation (created on first use).
-void push_docs(lua_State* L);
+// Registers `methods` into the table on top of the stack, and their
+// documentation under `owner` ("dda", "dda.Model", ...) and, for the model's
+// many methods, a `topic` (a heading of the reference: "Geometry").
+void set_methods(lua_State* L, const Method* methods, const char* owner, const char* topic = nullptr);
+// The documentation of the function at idx (nullptr: not one of the API's).
+const Method* find_method(lua_State* L, int idx);
 
 // Creates the metatable `type` (with __name) whose __index is a table of
 // `methods` (plus `index_fallback`, called for keys that are not methods, if
-// given), and the extra metamethods in `meta`. Every function must already be
-// wrapped in guarded<>.
+// given: the type's `fields`), and the extra metamethods in `meta`. Every
+// function must already be wrapped in guarded<>.
 void define_type(lua_State* L, const char* type, const Method* methods, const luaL_Reg* meta,
-                 lua_CFunction index_fallback = nullptr);
+                 lua_CFunction index_fallback = nullptr, Names fields = {});
 // Adds methods to an existing type's method table.
-void add_methods(lua_State* L, const char* type, const Method* methods);
+void add_methods(lua_State* L, const char* type, const Method* methods, const char* topic = nullptr);
+
+// What is documented, in the order registered: each owner ("dda", a type)
+// with its functions and, for a type, its fields.
+struct ApiSection {
+  std::string owner;
+  std::vector<const Method*> methods;
+  std::vector<std::string> topics;  // each method's ("" for none)
+  Names fields;
+};
+std::vector<ApiSection> api_sections(lua_State* L);
 
 // ---- models --------------------------------------------------------------------
 ScriptModel& push_new_model(lua_State* L, const Controls& controls);        // pushes a dda.Model
@@ -125,8 +143,10 @@ struct EdgeQuery {
 };
 std::vector<EdgeRef> select_edges(const ScriptModel& m, const EdgeQuery& q);
 
-// Controls from an options table (dda.model{...}, m:controls{...}).
+// Controls from an options table (dda.model{...}, m:controls{...}), whose
+// names are the controls' (world/controls.hpp).
 Options controls_options(lua_State* L, int idx, const char* call);
+Names control_option_names();
 void parse_controls(const Options& o, Controls& c);
 
 // Pushes a Lua table {x, y}.
@@ -156,7 +176,8 @@ void register_vtu(lua_State* L);  // m:vtu and dda.Vtu (wrap_vtu.cpp)
 // The VTU series `dda run --vtu N` asks for, on the new model at model_idx.
 void attach_session_vtu(lua_State* L, int model_idx);
 
-// Adds functions to dda.Model's method table (used by wrap_geometry.cpp, wrap_render.cpp).
-void add_model_methods(lua_State* L, const Method* methods);
+// Adds functions to dda.Model's method table under a topic (a heading of
+// the reference), from each wrapper file.
+void add_model_methods(lua_State* L, const Method* methods, const char* topic);
 
 }  // namespace dda::script

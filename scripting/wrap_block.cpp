@@ -12,11 +12,18 @@ namespace {
 
 // ---- model calls ----------------------------------------------------------------------------------
 
+constexpr Name kAddBlockOptions[] = {
+    {"polygon", "the outline {{x, y}, ...} (either orientation), or give the points inline: m:add_block{{x, y}, ...}",
+     "the points inline"},
+    {"rock", "its RockMaterial", "the first rock material"},
+    {"joint", "the JointMaterial of every edge", "the default joint"},
+    {"joints", "one JointMaterial per edge (edge k from point k to k + 1)", "the default joint"}};
+
 // m:add_block{{x, y}, ... | polygon = {...}, rock = r, joint = j | joints = {j1, j2, ...}} → Block
 int m_add_block(lua_State* L) {
   ScriptModel& m = check_model(L, 1, "m:add_block");
   check_not_busy(m, "m:add_block");
-  const Options o(L, 2, "m:add_block", {"polygon", "rock", "joint", "joints"}, true);
+  const Options o(L, 2, "m:add_block", kAddBlockOptions, true);
   if ((o.array_size() > 0) == o.has("polygon"))
     fail("m:add_block: give the outline once, inline {{x, y}, ...} or as polygon = {...}");
   std::vector<Vec2> pts =
@@ -89,6 +96,11 @@ int m_block_count(lua_State* L) {
   return 1;
 }
 
+constexpr Name kBlocksOptions[] = {{"in_box", "{x1, y1, x2, y2}: blocks whose centroid lies in the box", "any"},
+                                   {"containing", "{x, y}: the block that contains the point", "any"},
+                                   {"rock", "blocks of this RockMaterial", "any"},
+                                   {"where", "function(block) → boolean: blocks for which it returns true", "any"}};
+
 // m:blocks{in_box = {x1, y1, x2, y2}, containing = {x, y}, rock = r, where = f} → BlockSet
 // (no table: every block). Criteria combine with "and".
 int m_blocks(lua_State* L) {
@@ -99,7 +111,7 @@ int m_blocks(lua_State* L) {
   int rock = -1;
   int where = 0;
   if (!lua_isnoneornil(L, 2)) {
-    const Options o(L, 2, "m:blocks", {"in_box", "containing", "rock", "where"});
+    const Options o(L, 2, "m:blocks", kBlocksOptions);
     if (o.has("in_box")) box = o.quad("in_box");
     if (o.has("containing")) containing = o.point("containing");
     if (o.has("rock")) {
@@ -391,15 +403,17 @@ int bs_tostring(lua_State* L) {
 void register_block(lua_State* L) {
   static const Method model_methods[] = {
       {"add_block", guarded<m_add_block>,
-       "m:add_block{{x, y}, ... | polygon = {...}, rock = r, joint = j | joints = {j1, j2, ...}} → Block"},
+       "m:add_block{...} → Block\nA block from its outline, given inline (m:add_block{{0, 0}, {1, 0}, {1, 1}}) "
+       "or as `polygon`. A rock whose material has a mesh_size is meshed (its first element is returned).",
+       kAddBlockOptions},
       {"block", guarded<m_block>, "m:block(id) → Block (ids are the engine's, from 0)"},
       {"block_at", guarded<m_block_at>, "m:block_at(x, y) or m:block_at{x, y} → Block or nil"},
       {"blocks", guarded<m_blocks>,
-       "m:blocks{in_box = {x1, y1, x2, y2}, containing = {x, y}, rock = r, where = f} → BlockSet (no table: every "
-       "block). Criteria combine with \"and\"."},
+       "m:blocks{...} → BlockSet\nThe blocks that meet every criterion given (m:blocks() every block).",
+       kBlocksOptions},
       {"block_count", guarded<m_block_count>, "m:block_count() → the number of blocks"},
       {}};
-  add_model_methods(L, model_methods);
+  add_model_methods(L, model_methods, "Blocks");
 
   static const Method block_methods[] = {
       {"id", guarded<b_id>, "b:id() → the block's engine id (from 0)"},
@@ -413,7 +427,8 @@ void register_block(lua_State* L) {
        "b:stress() → sxx, syy, txy (Pa, tension positive; constant over a first-order block)"},
       {"velocity", guarded<b_velocity>, "b:velocity() → vx, vy, ω of the centroid (rad/s)"},
       {"velocity_at", guarded<b_velocity_at>, "b:velocity_at(x, y) → vx, vy of the block's material at a point (m/s)"},
-      {"displacement", guarded<b_displacement>, "b:displacement() → ux, uy of the centroid since the start (m)"},
+      {"displacement", guarded<b_displacement>,
+       "b:displacement() → ux, uy of the centroid since the start, or since m:settle (m)"},
       {"contains", guarded<b_contains>, "b:contains(x, y) → whether the point lies inside the block"},
       {"set_velocity", guarded<b_set_velocity>,
        "b:set_velocity(vx, vy [, ω]): the initial (or current) velocity (m/s, rad/s)"},

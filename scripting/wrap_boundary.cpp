@@ -42,6 +42,37 @@ History engine_history(const Options& o, const char* key) {
   return input.engine_history();
 }
 
+constexpr Name kViscousOptions[] = {
+    {"rock", "a RockMaterial: ρ, C_P and C_S of the medium beyond (the half-space below a compliant base)",
+     "each edge's own block"},
+    {"vx", "the incident wave's x particle velocity (m/s), a number or {{t, v}, ...}: a compliant base", "none"},
+    {"vy", "its y particle velocity (m/s), as vx", "none"}};
+constexpr Name kFreeFieldOptions[] = {
+    {"base", "the compliant base whose incident wave drives the column (an edges:viscous_boundary{vx = ...})",
+     nullptr}};
+constexpr Name kSpringOptions[] = {
+    {"p", "the spring's stiffness: N/m per m of edge (per_length), else N/m", nullptr},
+    {"per_length", "true: Eq. 22, a spring p·l at each end of each edge; false: Eq. 21, p alone", "true"}};
+// What moves a target: one of these, each a history (a number, {{t, v}, ...}
+// or, for a displacement, a function of t).
+constexpr Name kTargetMotion[] = {
+    {"displacement",
+     "{ux, uy} (m), a fixed vector; or a history along `direction` (a number, {{t, u}, ...} or a function(t))", "—"},
+    {"velocity", "a history (m/s, a number or {{t, v}, ...}) along `direction`, integrated to displacement", "—"},
+    {"acceleration", "a history (m/s², a number or {{t, a}, ...}), integrated twice from rest: a shaken base", "—"}};
+const std::vector<Name> kEdgesTargetOptions = [] {
+  std::vector<Name> n(std::begin(kTargetMotion), std::end(kTargetMotion));
+  n.push_back({"direction", "{dx, dy}: the direction of the motion", "each point's inward edge normal"});
+  return n;
+}();
+const std::vector<Name> kTargetOptions = [] {
+  std::vector<Name> n = {{"at", "{x, y}: the material point moved", nullptr},
+                         {"block", "the Block it belongs to", "the block containing `at`"},
+                         {"direction", "{dx, dy}: the direction of the motion", "none: give displacement = {ux, uy}"}};
+  n.insert(n.end(), std::begin(kTargetMotion), std::end(kTargetMotion));
+  return n;
+}();
+
 // edges:viscous_boundary{rock = r, vx = h, vy = h} → Boundary (all options optional)
 int es_viscous(lua_State* L) {
   EdgesSelf s = self_edges(L, "edges:viscous_boundary");
@@ -49,7 +80,7 @@ int es_viscous(lua_State* L) {
     lua_settop(L, 1);
     lua_newtable(L);
   }
-  const Options o(L, 2, "edges:viscous_boundary", {"rock", "vx", "vy"});
+  const Options o(L, 2, "edges:viscous_boundary", kViscousOptions);
   int medium = -1;
   if (o.has("rock")) {
     o.push("rock");
@@ -69,7 +100,7 @@ int es_viscous(lua_State* L) {
 // coupled to a 1-D free-field column driven by the compliant base's wave.
 int es_free_field(lua_State* L) {
   EdgesSelf s = self_edges(L, "edges:free_field");
-  const Options o(L, 2, "edges:free_field", {"base"});
+  const Options o(L, 2, "edges:free_field", kFreeFieldOptions);
   if (!o.has("base")) fail("edges:free_field: option 'base' (the compliant base, a dda.Boundary) is required");
   o.push("base");
   Handle* base = check_handle(L, -1, kBoundaryType, "edges:free_field", "option 'base'");
@@ -86,7 +117,7 @@ int es_free_field(lua_State* L) {
 // (per_length: Eq. 22, spring p·l at each end; false: Eq. 21, p alone)
 int es_spring(lua_State* L) {
   EdgesSelf s = self_edges(L, "edges:spring_boundary");
-  const Options o(L, 2, "edges:spring_boundary", {"p", "per_length"});
+  const Options o(L, 2, "edges:spring_boundary", kSpringOptions);
   const double p = o.positive("p");
   const bool per_length = o.boolean("per_length", true);
   const int id = s.model->world().add_spring_boundary(s.edges, p, per_length);
@@ -141,7 +172,7 @@ ScriptTarget read_target(const Options& o, bool directed) {
 // of its edges' normals where two edges of the set meet).
 int es_target(lua_State* L) {
   EdgesSelf s = self_edges(L, "edges:target");
-  const Options o(L, 2, "edges:target", {"displacement", "velocity", "acceleration", "direction"});
+  const Options o(L, 2, "edges:target", kEdgesTargetOptions);
   std::optional<Vec2> direction;
   if (o.has("direction")) {
     direction = o.point("direction");
@@ -158,7 +189,7 @@ int es_target(lua_State* L) {
 int m_target(lua_State* L) {
   ScriptModel& m = check_model(L, 1, "m:target");
   check_not_busy(m, "m:target");
-  const Options o(L, 2, "m:target", {"at", "block", "direction", "displacement", "velocity", "acceleration"});
+  const Options o(L, 2, "m:target", kTargetOptions);
   const Vec2 at = o.point("at");
   BlockId b;
   if (o.has("block")) {
@@ -236,7 +267,7 @@ Handle* self_target(lua_State* L, const char* call) {
 int tg_set(lua_State* L) {
   Handle* h = self_target(L, "target:set");
   check_not_busy(*h->model, "target:set");
-  const Options o(L, 2, "target:set", {"displacement", "velocity", "acceleration"});
+  const Options o(L, 2, "target:set", kTargetMotion);
   ScriptTarget& old = h->model->target(h->id);
   ScriptTarget input = read_target(o, old.mode != ScriptTarget::Mode::Vector);
   if (old.mode == ScriptTarget::Mode::Vector && input.mode != ScriptTarget::Mode::Vector)
@@ -296,31 +327,34 @@ int tg_tostring(lua_State* L) {
 void register_boundaries(lua_State* L) {
   static const Method edge_methods[] = {
       {"viscous_boundary", guarded<es_viscous>,
-       "edges:viscous_boundary{rock = r, vx = h, vy = h} → Boundary. Dashpots ρC_P (normal) and ρC_S (along the "
-       "edge) that absorb waves leaving the model (Eqs. 6-12); ρ and the wave speeds are those of each edge's block, "
-       "or of rock material r (the half-space below a compliant base). With vx, vy (histories of the incident "
-       "wave's particle velocity, m/s, a number or {{t, v}, ...}) it is a compliant base: the wave comes in as the "
-       "traction 2ρC·v_in (vertically incident S: vx on a horizontal base; P: vy). See docs/seismic.md."},
+       "edges:viscous_boundary{...} → Boundary\nDashpots ρC_P (normal) and ρC_S (along the edge) that absorb "
+       "waves leaving the model (Eqs. 6-12). With vx, vy it is a compliant base: the incident wave comes in as the "
+       "traction 2ρC·v_in (vertically incident S: vx on a horizontal base; P: vy). docs/seismic.md.",
+       kViscousOptions},
       {"free_field", guarded<es_free_field>,
-       "edges:free_field{base = boundary} → Boundary. A free-field side: the edges (one vertical side of the model, "
-       "all facing the same way) are coupled to a 1-D column beside them, driven by the incident wave of `base` (a "
-       "compliant base: edges:viscous_boundary{vx = ...}), through dashpots ρC_P, ρC_S against the column's velocity "
-       "and the column's stresses. Call once per side. See docs/seismic.md."},
+       "edges:free_field{...} → Boundary\nA free-field side: the edges (one vertical side of the model, all facing "
+       "the same way) are coupled to a 1-D column beside them, driven by the incident wave of `base`, through "
+       "dashpots ρC_P, ρC_S against the column's velocity and the column's stresses. Once per side. "
+       "docs/seismic.md.",
+       kFreeFieldOptions},
       {"spring_boundary", guarded<es_spring>,
-       "edges:spring_boundary{p = stiffness, per_length = true} → Boundary (per_length: Eq. 22, spring p·l at each "
-       "end; false: Eq. 21, p alone)"},
+       "edges:spring_boundary{...} → Boundary\nSprings at the edges' end points that resist each step's "
+       "displacement (the paper's SBC).",
+       kSpringOptions},
       {"target", guarded<es_target>,
-       "edges:target{displacement = h | velocity = h | acceleration = h, direction = {dx, dy}} → Target. A target at "
-       "each end point of "
-       "each edge (once per block vertex); without a direction each point moves along the edge normal into its block "
-       "(the mean of its edges' normals where two edges of the set meet)."},
+       "edges:target{...} → Target\nA prescribed motion at each end point of each edge (once per block vertex); "
+       "without a direction each point moves along the edge normal into its block (the mean of its edges' normals "
+       "where two edges of the set meet).",
+       kEdgesTargetOptions},
       {}};
   add_methods(L, kEdgeSetType, edge_methods);
-  static const Method model_methods[] = {{"target", guarded<m_target>,
-                                          "m:target{at = {x, y}, block = b, direction = {dx, dy}, displacement = h | "
-                                          "velocity = h | acceleration = h} → Target"},
-                                         {}};
-  add_model_methods(L, model_methods);
+  static const Method model_methods[] = {
+      {"target", guarded<m_target>,
+       "m:target{...} → Target\nA prescribed motion of a material point (the paper's DHI: a stiff spring to the "
+       "moving target).",
+       kTargetOptions},
+      {}};
+  add_model_methods(L, model_methods, "Prescribed motion");
   static const Method bd_methods[] = {
       {"force", guarded<bd_force>,
        "boundary:force() → fx, fy: the total force its points exerted in the last step (N per unit thickness)"},
@@ -333,7 +367,7 @@ void register_boundaries(lua_State* L) {
   static const luaL_Reg bd_meta[] = {{"__tostring", bd_tostring}, {nullptr, nullptr}};
   define_type(L, kBoundaryType, bd_methods, bd_meta);
   static const Method tg_methods[] = {
-      {"set", guarded<tg_set>, "target:set{displacement = ... | velocity = ... | acceleration = ...}"},
+      {"set", guarded<tg_set>, "target:set{...}\nA new motion, as the target was made with.", kTargetMotion},
       {"displacement", guarded<tg_displacement>,
        "target:displacement([i]) → ux, uy of point i (default: the mean over its points)"},
       {"value", guarded<tg_value>,

@@ -23,13 +23,22 @@ const char* kind_name(EdgeKind k) {
   return "?";
 }
 
+constexpr Name kEdgesOptions[] = {
+    {"on_segment", "{x1, y1, x2, y2}: edges lying on that segment (both ends within `tol` of it)", "any"},
+    {"in_box", "{x1, y1, x2, y2}: edges inside the box", "any"},
+    {"boundary", "`\"domain\"` (the domain's outline), `\"hole\"` (holes' outlines) or `\"any\"` (either)", "any edge"},
+    {"hole", "edges of this hole (a Hole, or its number from 1)", "any"},
+    {"joint", "edges of this JointMaterial", "any"},
+    {"block", "edges of this Block", "any"},
+    {"tol", "distance (m) within which a point counts as on the segment or in the box", "1e-7 × the model's size"}};
+
 // m:edges{on_segment = {x1, y1, x2, y2}, in_box = {x1, y1, x2, y2},
 //         boundary = "domain" | "hole" | "any", hole = h, joint = j, block = b, tol = d} → EdgeSet
 int m_edges(lua_State* L) {
   ScriptModel& m = check_model(L, 1, "m:edges");
   EdgeQuery q;
   if (!lua_isnoneornil(L, 2)) {
-    const Options o(L, 2, "m:edges", {"on_segment", "in_box", "boundary", "hole", "joint", "block", "tol"});
+    const Options o(L, 2, "m:edges", kEdgesOptions);
     if (o.has("on_segment")) q.on_segment = o.quad("on_segment");
     if (o.has("in_box")) q.in_box = o.quad("in_box");
     if (o.has("boundary")) {
@@ -179,10 +188,10 @@ int es_tostring(lua_State* L) {
 void register_edges(lua_State* L) {
   static const Method model_methods[] = {
       {"edges", guarded<m_edges>,
-       "m:edges{on_segment = {x1, y1, x2, y2}, in_box = {x1, y1, x2, y2}, boundary = \"domain\" | \"hole\" | \"any\", "
-       "hole = h, joint = j, block = b, tol = d} → EdgeSet"},
+       "m:edges{...} → EdgeSet\nThe block edges that meet every criterion given (m:edges() every edge).",
+       kEdgesOptions},
       {}};
-  add_model_methods(L, model_methods);
+  add_model_methods(L, model_methods, "Edges");
   static const Method methods[] = {
       {"count", guarded<es_count>, "edges:count() → the number of edges (also #edges)"},
       {"length", guarded<es_length>, "edges:length() → their total length (m)"},

@@ -112,7 +112,7 @@ void register_exact_functions(lua_State* L) {
        "stiffness kn (Pa/m) in a rock of modulus E (1-D: transfer matrices, docs/waves.md). A reference for the "
        "tests."},
       {}};
-  set_methods(L, functions);
+  set_methods(L, functions, "dda");
 }
 
 }  // namespace dda::script

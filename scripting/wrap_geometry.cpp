@@ -76,11 +76,55 @@ int optional_rock(const Options& o, ScriptModel& m, const char* key, int def) {
   return r;
 }
 
+constexpr Name kDomainOptions[] = {
+    {"polygon", "the outline {{x, y}, ...}; or `box`, or the points inline: m:domain{{x, y}, ...}", "—"},
+    {"box", "{x1, y1, x2, y2}: a rectangular outline", "—"},
+    {"rock", "the RockMaterial of its blocks (m:region{...} gives others)", "the first rock material"},
+    {"joint", "the JointMaterial of the domain's outline edges", "the default joint"}};
+constexpr Name kHoleOptions[] = {
+    {"polygon", "the outline {{x, y}, ...}; or `box`, `circle`, or the points inline", "—"},
+    {"box", "{x1, y1, x2, y2}: a rectangular hole", "—"},
+    {"circle", "{x, y, r}: a circular hole, a polygon of `segments` sides", "—"},
+    {"segments", "sides of a circle's polygon", "32"},
+    {"joint", "the JointMaterial of the hole's outline edges", "the default joint"}};
+constexpr Name kRegionOptions[] = {
+    {"polygon", "the region {{x, y}, ...}; or `box`, or the points inline", "—"},
+    {"box", "{x1, y1, x2, y2}: a rectangular region", "—"},
+    {"rock", "the RockMaterial of the blocks whose centroid lies in it (the last region wins)", nullptr}};
+constexpr Name kJointSetOptions[] = {
+    {"dip", "angle of the joints, degrees counter-clockwise from +x", nullptr},
+    {"spacing", "distance between joints, perpendicular to them (m)", nullptr},
+    {"origin", "{x, y}: a point one joint passes through", "{0, 0}"},
+    {"joint", "the JointMaterial of the set's joints", "the default joint"},
+    {"trace", "length of each joint trace (m): non-persistent joints; 0: persistent", "0"},
+    {"bridge", "length of rock bridge between traces (m); needs `trace`", "0"},
+    {"spacing_sd", "standard deviation of the spacing (m)", "0"},
+    {"dip_sd", "standard deviation of the dip (degrees)", "0"},
+    {"trace_sd", "standard deviation of the trace length (m)", "0"},
+    {"seed", "seed of the set's variations (the same seed, the same joints on any machine)", "0"}};
+constexpr Name kJointLineOptions[] = {
+    {"from", "{x, y}: one end; or give both ends inline: m:joint_line{{x1, y1}, {x2, y2}}", "—"},
+    {"to", "{x, y}: the other end", "—"},
+    {"joint", "its JointMaterial", "the default joint"}};
+constexpr Name kGenerateOptions[] = {
+    {"min_area", "blocks smaller than this (m²) are merged into the neighbour sharing the longest joint", "0"},
+    {"slivers", "`\"merge\"` such blocks, or `\"error\"`: report them", "\"merge\""},
+    {"snap", "points closer than this (m) become one vertex", "1e-9 × the domain's size"},
+    {"inner_cut",
+     "a JointMaterial: a hole no joint reaches (or a closed loop of joints) is cut free with short joints of it; "
+     "without it such a hole is an error",
+     "none"}};
+constexpr Name kGenerateReturns[] = {{"blocks", "blocks made"},
+                                     {"slivers_merged", "blocks below min_area merged into a neighbour"},
+                                     {"dangling_edges_removed", "joint pieces that ended in rock, removed"},
+                                     {"inner_cuts", "cuts added by inner_cut"},
+                                     {"input_segments", "segments cut (boundaries, holes and joints)"}};
+
 // m:domain{polygon | box | points..., rock = r, joint = j}
 int m_domain(lua_State* L) {
   ScriptModel& m = check_model(L, 1, "m:domain");
   check_not_generated(m, "m:domain");
-  const Options o(L, 2, "m:domain", {"polygon", "box", "rock", "joint"}, true);
+  const Options o(L, 2, "m:domain", kDomainOptions, true);
   std::vector<Vec2> outline = read_shape(o, false);
   int rock = optional_rock(o, m, "rock", -1);
   if (rock < 0) {
@@ -97,7 +141,7 @@ int m_domain(lua_State* L) {
 int m_hole(lua_State* L) {
   ScriptModel& m = check_model(L, 1, "m:hole");
   check_not_generated(m, "m:hole");
-  const Options o(L, 2, "m:hole", {"polygon", "box", "circle", "segments", "joint"}, true);
+  const Options o(L, 2, "m:hole", kHoleOptions, true);
   std::vector<Vec2> outline = read_shape(o, true);
   if (!o.has("circle") && o.has("segments")) fail("m:hole: option 'segments' only applies to circle = {x, y, r}");
   const int joint = optional_joint(o, m, "joint", 0);
@@ -110,7 +154,7 @@ int m_hole(lua_State* L) {
 int m_region(lua_State* L) {
   ScriptModel& m = check_model(L, 1, "m:region");
   check_not_generated(m, "m:region");
-  const Options o(L, 2, "m:region", {"polygon", "box", "rock"}, true);
+  const Options o(L, 2, "m:region", kRegionOptions, true);
   geometry::MaterialRegion region;
   region.polygon = read_shape(o, false);
   if (!o.has("rock")) fail("m:region: option 'rock' is required (the rock material of the region's blocks)");
@@ -123,8 +167,7 @@ int m_region(lua_State* L) {
 int m_joint_set(lua_State* L) {
   ScriptModel& m = check_model(L, 1, "m:joint_set");
   check_not_generated(m, "m:joint_set");
-  const Options o(L, 2, "m:joint_set",
-                  {"dip", "spacing", "origin", "joint", "trace", "bridge", "spacing_sd", "dip_sd", "trace_sd", "seed"});
+  const Options o(L, 2, "m:joint_set", kJointSetOptions);
   geometry::JointSet s;
   s.dip_deg = o.number("dip");
   s.spacing = o.positive("spacing");
@@ -149,7 +192,7 @@ int m_joint_set(lua_State* L) {
 int m_joint_line(lua_State* L) {
   ScriptModel& m = check_model(L, 1, "m:joint_line");
   check_not_generated(m, "m:joint_line");
-  const Options o(L, 2, "m:joint_line", {"from", "to", "joint"}, true);
+  const Options o(L, 2, "m:joint_line", kJointLineOptions, true);
   geometry::JointLine line;
   if (o.array_size() > 0) {
     if (o.has("from") || o.has("to")) fail("m:joint_line: give the end points either inline or as from/to, not both");
@@ -178,7 +221,7 @@ int m_generate(lua_State* L) {
   if (!m.has_domain()) fail("m:generate: no domain: call m:domain{...} first");
   geometry::CutInput& in = m.cut_input();
   if (!lua_isnoneornil(L, 2)) {
-    const Options o(L, 2, "m:generate", {"min_area", "slivers", "snap", "inner_cut"});
+    const Options o(L, 2, "m:generate", kGenerateOptions);
     in.min_block_area = o.non_negative("min_area", in.min_block_area);
     if (o.has("slivers")) {
       const std::string p = o.string("slivers");
@@ -192,7 +235,19 @@ int m_generate(lua_State* L) {
     in.snap_tolerance = o.non_negative("snap", in.snap_tolerance);
     in.inner_cut_material = optional_joint(o, m, "inner_cut", in.inner_cut_material);
   }
-  const std::vector<BlockId> ids = m.generate();
+  std::vector<BlockId> ids;
+  try {
+    ids = m.generate();
+  } catch (const Error& e) {
+    // The engine names its own inputs; a script gives them as these options.
+    static const std::pair<std::string, std::string> kLuaNames[] = {
+        {"set inner_cut_material to", "give inner_cut = a joint material to"}, {"min_block_area", "min_area"}};
+    std::string text = e.what();
+    for (const auto& [engine, lua] : kLuaNames)
+      for (auto at = text.find(engine); at != std::string::npos; at = text.find(engine, at + lua.size()))
+        text.replace(at, engine.size(), lua);
+    fail("m:generate: ", text);
+  }
   push_blockset(L, 1, ids);
   const geometry::CutStats& st = m.cut_stats();
   lua_createtable(L, 0, 5);
@@ -240,17 +295,22 @@ int hole_tostring(lua_State* L) {
 
 void register_geometry(lua_State* L) {
   static const Method model_methods[] = {
-      {"domain", guarded<m_domain>, "m:domain{polygon | box | points..., rock = r, joint = j}"},
-      {"hole", guarded<m_hole>, "m:hole{polygon | box | circle | points..., segments = 32, joint = j} → dda.Hole"},
-      {"region", guarded<m_region>, "m:region{polygon | box | points..., rock = r}"},
+      {"domain", guarded<m_domain>,
+       "m:domain{...}\nThe region cut into blocks by the joint sets and lines (once, before m:generate).",
+       kDomainOptions},
+      {"hole", guarded<m_hole>, "m:hole{...} → Hole\nAn excavation: no blocks inside it.", kHoleOptions},
+      {"region", guarded<m_region>, "m:region{...}\nA material region: its blocks get its rock.", kRegionOptions},
       {"joint_set", guarded<m_joint_set>,
-       "m:joint_set{dip, spacing, origin, joint, trace, bridge, spacing_sd, dip_sd, trace_sd, seed} → set number"},
-      {"joint_line", guarded<m_joint_line>,
-       "m:joint_line{from = {x, y}, to = {x, y}, joint = j}  or  m:joint_line{{x1, y1}, {x2, y2}, joint = j}"},
+       "m:joint_set{...} → the set's number\nParallel joints across the domain; persistent, or traces and bridges "
+       "from a random phase.",
+       kJointSetOptions},
+      {"joint_line", guarded<m_joint_line>, "m:joint_line{...}\nOne joint along a segment.", kJointLineOptions},
       {"generate", guarded<m_generate>,
-       "m:generate{min_area, slivers = \"merge\" | \"error\", snap, inner_cut = joint} → BlockSet, info"},
+       "m:generate{...} → BlockSet, info\nCuts the domain into blocks (docs/scripting.md, \"Block generation\"); "
+       "`info` says what the cut did.",
+       kGenerateOptions, kGenerateReturns},
       {}};
-  add_model_methods(L, model_methods);
+  add_model_methods(L, model_methods, "Geometry");
   static const Method hole_methods[] = {
       {"edges", guarded<hole_edges>, "hole:edges() → EdgeSet of the hole's boundary edges (after m:generate())."},
       {"number", guarded<hole_number>, "hole:number() → 1-based hole number (as in messages: \"hole 1\")"},

@@ -47,10 +47,32 @@ void push_motion(lua_State* L, const GroundMotion& g) {
   lua_setfield(L, -2, "pgd");
 }
 
+constexpr Name kGroundMotionOptions[] = {
+    {"file", "the record's file (data/ holds El Centro 1979); or give `samples`", "—"},
+    {"samples", "{{t, a}, ...}: the record as a table", "—"},
+    {"format",
+     "`\"accelerogram\"` (% header lines, then values; the spacing from the header) or `\"csv\"` (rows of time, "
+     "acceleration)",
+     "\"csv\" for files ending .csv, else \"accelerogram\""},
+    {"unit", "the acceleration's unit: `\"m/s2\"`, `\"cm/s2\"` or `\"g\"` (required for csv and samples)",
+     "\"cm/s2\" (accelerogram)"},
+    {"dt", "resample to this spacing (s)", "the record's"},
+    {"baseline", "order of the polynomial fitted to the velocity and taken off, 0 (none) to 6", "2"},
+    {"scale", "multiplies the record", "1"}};
+constexpr Name kGroundMotionReturns[] = {{"dt", "the spacing (s)"},
+                                         {"duration", "the record's length (s)"},
+                                         {"source", "where it came from"},
+                                         {"acceleration", "{{t, a}, ...} (m/s²)"},
+                                         {"velocity", "{{t, v}, ...} (m/s), integrated"},
+                                         {"displacement", "{{t, u}, ...} (m), integrated twice"},
+                                         {"pga", "{value, time}: the peak acceleration, its sign kept"},
+                                         {"pgv", "{value, time}: the peak velocity"},
+                                         {"pgd", "{value, time}: the peak displacement"}};
+
 // dda.ground_motion{file = path | samples = {{t, a}, ...}, format, unit, dt, baseline = 2, scale = 1}
 int dda_ground_motion(lua_State* L) {
   const char* call = "dda.ground_motion";
-  const Options o(L, 1, call, {"file", "samples", "format", "unit", "dt", "baseline", "scale"});
+  const Options o(L, 1, call, kGroundMotionOptions);
   const int which = one_of(o, {"file", "samples"});
   const double dt = o.non_negative("dt", 0);
   const long baseline = o.integer("baseline", 2);
@@ -99,15 +121,13 @@ int dda_ground_motion(lua_State* L) {
 void register_ground_motion_functions(lua_State* L) {
   static const Method functions[] = {
       {"ground_motion", guarded<dda_ground_motion>,
-       "dda.ground_motion{file = path | samples = {{t, a}, ...}, format, unit, dt, baseline = 2, scale = 1} → "
-       "{dt, duration, acceleration, velocity, displacement, pga, pgv, pgd}. Reads an accelerogram (format "
-       "\"accelerogram\": % header lines then values, spacing from the header, unit cm/s2 by default; \"csv\" "
-       "(files ending .csv): time, acceleration rows, unit required: \"m/s2\", \"cm/s2\" or \"g\"), resamples it to "
-       "dt, scales it, takes off a polynomial of order `baseline` fitted to its velocity (0: none) and integrates "
-       "it. The series are {{t, value}, ...} in SI units (m/s2, m/s, m), ready for edges:target{displacement = ...} "
-       "and edges:viscous_boundary{vx = ...}; the peaks are {value, time} with the sign kept."},
+       "dda.ground_motion{...} → a record\nReads a strong-motion record, resamples it to dt, scales it, takes off a "
+       "polynomial of order `baseline` fitted to its velocity and integrates it. The series are {{t, value}, ...} "
+       "in SI units, ready for edges:target{displacement = ...} and edges:viscous_boundary{vx = ...} "
+       "(docs/seismic.md).",
+       kGroundMotionOptions, kGroundMotionReturns},
       {}};
-  set_methods(L, functions);
+  set_methods(L, functions, "dda");
 }
 
 }  // namespace dda::script

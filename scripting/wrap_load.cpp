@@ -80,11 +80,26 @@ BlockId block_for_point(lua_State* L, const Options& o, ScriptModel& m, const Ve
   return *b;
 }
 
+// The force's options (read_force), a history each: a number, {{t, v}, ...}
+// (linear between) or a function of t.
+constexpr Name kForceOptions[] = {
+    {"force", "{fx, fy} (N/m), or a function(t) returning fx, fy; or give fx, fy, or direction and magnitude", "—"},
+    {"fx", "x force (N/m): a number, {{t, fx}, ...} or a function(t)", "0"},
+    {"fy", "y force (N/m), as fx", "0"},
+    {"direction", "{dx, dy}: the force's direction (the paper's FHI: direction × magnitude(t))", "—"},
+    {"magnitude", "the force along `direction` (N/m), as fx", "—"}};
+const std::vector<Name> kPointLoadOptions = [] {
+  std::vector<Name> n = {{"at", "{x, y}: the material point the load acts at (it moves with its block)", nullptr},
+                         {"block", "the Block it acts on (when `at` lies on several)", "the block containing `at`"}};
+  n.insert(n.end(), std::begin(kForceOptions), std::end(kForceOptions));
+  return n;
+}();
+
 // m:point_load{at = {x, y}, block = b, force = ... | fx = ..., fy = ...} → PointLoad
 int m_point_load(lua_State* L) {
   ScriptModel& m = check_model(L, 1, "m:point_load");
   check_not_busy(m, "m:point_load");
-  const Options o(L, 2, "m:point_load", {"at", "block", "force", "fx", "fy", "direction", "magnitude"});
+  const Options o(L, 2, "m:point_load", kPointLoadOptions);
   const Vec2 at = o.point("at");
   const BlockId b = block_for_point(L, o, m, at);
   ForceInput force = read_force(o);
@@ -133,7 +148,7 @@ int pl_set(lua_State* L) {
   check_not_busy(*h->model, "load:set");
   ForceInput force;
   if (lua_type(L, 2) == LUA_TTABLE) {
-    const Options o(L, 2, "load:set", {"force", "fx", "fy", "direction", "magnitude"});
+    const Options o(L, 2, "load:set", kForceOptions);
     force = read_force(o);
   } else {
     force.xy = VecTimeInput::constant(
@@ -207,14 +222,17 @@ int pr_tostring(lua_State* L) {
 void register_loads(lua_State* L) {
   static const Method model_methods[] = {
       {"point_load", guarded<m_point_load>,
-       "m:point_load{at = {x, y}, block = b, force = ... | fx = ..., fy = ...} → PointLoad"},
+       "m:point_load{...} → PointLoad\nA force at a material point; each component a number, a table {{t, v}, ...} "
+       "(linear between, evaluated at each step's end) or a function of t (evaluated once per step).",
+       kPointLoadOptions},
       {"fix", guarded<m_fix>,
        "m:fix(x, y [, block]) or m:fix{x, y} → adds a fixed point (a stiff spring holding that material point where it "
        "starts)."},
       {}};
-  add_model_methods(L, model_methods);
+  add_model_methods(L, model_methods, "Loads and fixed points");
   static const Method pl_methods[] = {
-      {"set", guarded<pl_set>, "load:set(fx, fy) or load:set{force = ... | fx = ..., fy = ...}"},
+      {"set", guarded<pl_set>, "load:set{...} or load:set(fx, fy)\nA new force, as m:point_load takes it.",
+       kForceOptions},
       {"force", guarded<pl_force>, "load:force() → fx, fy applied in the last (or next) step"},
       {"block", guarded<pl_block>, "load:block() → the Block the load acts on"},
       {}};

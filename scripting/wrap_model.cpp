@@ -22,16 +22,18 @@ namespace dda::script {
 // (world/controls.hpp): names, types, checks and their messages come from
 // there, so a control added there needs nothing here.
 
-namespace {
-std::span<const char* const> control_names() {
-  static const std::vector<const char*> names = [] {
-    std::vector<const char*> n;
-    for (const ControlSpec& s : control_specs()) n.push_back(s.name);
+Names control_option_names() {
+  static const std::vector<Name> names = [] {
+    static std::vector<std::string> defaults;
+    const Controls c;
+    for (const ControlSpec& s : control_specs()) defaults.push_back(s.default_text ? s.default_text : s.value_text(c));
+    std::vector<Name> n;
+    for (std::size_t k = 0; k < control_specs().size(); ++k)
+      n.push_back({control_specs()[k].name, control_specs()[k].doc, defaults[k].c_str()});
     return n;
   }();
   return names;
 }
-}  // namespace
 
 void parse_controls(const Options& o, Controls& c) {
   const std::string& call = o.call();
@@ -65,7 +67,9 @@ void parse_controls(const Options& o, Controls& c) {
   }
 }
 
-Options controls_options(lua_State* L, int idx, const char* call) { return Options(L, idx, call, control_names()); }
+Options controls_options(lua_State* L, int idx, const char* call) {
+  return Options(L, idx, call, control_option_names());
+}
 
 namespace {
 
@@ -174,6 +178,10 @@ void log_controls_once(lua_State* L, ScriptModel& m) {
   std::string text;
   for (const auto& [k, v] : items) text += " " + k + "=" + v;
   s.log.line(msg("model: ", m.world().block_count(), " blocks; controls:", text));
+  const double g1 = m.world().controls().g1;
+  s.log.line(g1 > 0 ? msg("time step: at most g1 = ", g1, " s, as the script gives")
+                    : "time step: g1 = 0, the default rule (docs/time_step.md): " +
+                          m.world().default_time_step().describe());
 }
 
 // Before the first step: the wave model, the functions sampled over the run
@@ -182,7 +190,7 @@ void log_controls_once(lua_State* L, ScriptModel& m) {
 void decide_wave_model_once(lua_State* L, ScriptModel& m, const RunPlan& plan) {
   if (m.world().wave_model().decided) return;
   const World& w = m.world();
-  const double dt = w.controls().g1 > 0 ? w.controls().g1 : w.suggested_time_step();
+  const double dt = w.controls().g1 > 0 ? w.controls().g1 : w.default_time_step().dt;
   const double window = plan.t_end >= 0 ? plan.t_end : static_cast<double>(std::max<long>(plan.steps, 0)) * dt;
   const WaveModel& wave = m.decide_wave_model(L, window);
   Session& s = session(L);
@@ -194,6 +202,7 @@ void decide_wave_model_once(lua_State* L, ScriptModel& m, const RunPlan& plan) {
 }  // namespace
 
 long begin_stepping_call(lua_State* L, ScriptModel& m, const RunPlan& plan) {
+  stop_if_params_only(L, "the first stepping call");
   restart_if_pending(L, m);
   const long s0 = m.replay_mark ? *m.replay_mark : m.world().step_count();
   stop_if_interrupted(m, nullptr);
@@ -283,6 +292,16 @@ int m_run_until(lua_State* L) {
 
 }  // namespace
 
+constexpr Name kRunPlanOptions[] = {
+    {"time", "run until the model's time reaches this (s); give `time` or `steps`", "—"},
+    {"steps", "run this many steps; give `time` or `steps`", "—"},
+    {"every", "call `callback` every this many steps", "1"},
+    {"callback", "function(m) called between steps; returning false stops the run", "none"},
+    {"realtime", "pace the run to the wall clock: r simulated seconds per second (1: real time); 0: as fast as it goes",
+     "0"}};
+
+Names run_plan_options() { return kRunPlanOptions; }
+
 RunPlan read_run_plan(const Options& o) {
   lua_State* L = o.state();
   const char* call = o.call().c_str();
@@ -312,12 +331,18 @@ RunPlan read_run_plan(const Options& o) {
 
 namespace {
 
+const std::vector<Name> kRunOptions = [] {
+  std::vector<Name> n(std::begin(kRunPlanOptions), std::end(kRunPlanOptions));
+  n.push_back({"background", "true: the run goes on a thread of its own, as m:start{...}", "false"});
+  return n;
+}();
+
 // m:run{time = t | steps = n, every = N, callback = f, realtime = r, background = false} → t, step
 int m_run(lua_State* L) {
   ScriptModel& m = check_model(L, 1, "m:run");
   check_not_busy(m, "m:run");
   check_no_background_run(m, "m:run");
-  const Options o(L, 2, "m:run", {"time", "steps", "every", "callback", "realtime", "background"});
+  const Options o(L, 2, "m:run", kRunOptions);
   RunPlan plan = read_run_plan(o);
   if (o.boolean("background", false)) {
     start_background_run(L, 1, m, std::move(plan));
@@ -325,6 +350,70 @@ int m_run(lua_State* L) {
   }
   run_loop(L, m, std::move(plan));
   return push_time_and_steps(L, m);
+}
+
+constexpr Name kSettleOptions[] = {
+    {"tolerance",
+     "converged when every block's unbalanced force is at most this share of the largest block weight (without "
+     "gravity: of the largest stress resultant |σ|·sqrt(A))",
+     "1e-5"},
+    {"max_steps", "settling steps before it gives up with an error", "10000"}};
+constexpr Name kSettleReturns[] = {{"steps", "the settling steps taken (static, the time held)"},
+                                   {"ratio", "the largest unbalanced force over the reference force at the end"}};
+
+// m:settle{tolerance = 1e-5, max_steps = 10000} → {steps, ratio}: the model
+// brought to equilibrium under what acts on it now (world/settle.hpp), then
+// at rest; an error names the block furthest from balance when it does not
+// settle.
+int m_settle(lua_State* L) {
+  ScriptModel& m = check_model(L, 1, "m:settle");
+  check_not_busy(m, "m:settle");
+  double tolerance = 1e-5;
+  long max_steps = 10000;
+  if (!lua_isnoneornil(L, 2)) {
+    const Options o(L, 2, "m:settle", kSettleOptions);
+    tolerance = o.positive("tolerance", tolerance);
+    max_steps = o.integer("max_steps", max_steps);
+    if (max_steps < 1) fail("m:settle: option 'max_steps' must be at least 1, got ", max_steps);
+  }
+  check_no_background_run(m, "m:settle");
+  begin_stepping_call(L, m, RunPlan{});
+  World& w = m.world();
+  lua_createtable(L, 0, 2);
+  if (m.replay_mark) {  // dda run --restart: the checkpoint's model is past its settling
+    set_integer_field(L, "steps", 0);
+    set_number_field(L, "ratio", w.unbalanced_force().ratio);
+    return 1;
+  }
+  const long s0 = w.step_count();
+  Progress progress(L, 0, 0, s0, s0 + max_steps);
+  UnbalancedForce u;
+  long steps = 0;
+  {
+    const auto settling = w.settling();
+    do {
+      m.settle_step(L);
+      ++steps;
+      check_interrupt(msg("while settling, ", where_now(w)).c_str());
+      progress.update(w.time(), w.step_count());
+      m.control().lock.yield();  // a live view's turn
+      u = w.unbalanced_force();
+    } while (u.ratio > tolerance && steps < max_steps);
+  }
+  Session& s = session(L);
+  if (u.ratio > tolerance) {
+    const Vec2 c = w.block_centroid(u.block);
+    fail("m:settle: not in equilibrium after ", steps, " steps: the unbalanced force on block ", u.block, " at (",
+         c.x(), ", ", c.y(), ") is ", u.ratio, " of the largest block weight (tolerance ", tolerance,
+         "). The model does not stand as it is (a block slides, topples or falls: m:contacts{state = \"sliding\"} "
+         "lists the sliding contacts), or it needs more steps (option max_steps).");
+  }
+  w.come_to_rest();
+  s.log.line(msg("settled: ", steps, " static steps, the largest unbalanced force ", u.ratio,
+                 " of the largest block weight (tolerance ", tolerance, "); at rest, displacements from here"));
+  set_integer_field(L, "steps", steps);
+  set_number_field(L, "ratio", u.ratio);
+  return 1;
 }
 
 // m:save(file) → path: a checkpoint of the model (a relative name goes into the output folder)
@@ -360,7 +449,7 @@ int m_dt(lua_State* L) {
   return 1;
 }
 int m_suggested_dt(lua_State* L) {
-  lua_pushnumber(L, check_model(L, 1, "m:suggested_dt").world().suggested_time_step());
+  lua_pushnumber(L, check_model(L, 1, "m:suggested_dt").world().default_time_step().dt);
   return 1;
 }
 int m_stats(lua_State* L) {
@@ -410,13 +499,28 @@ ContactState parse_state(const std::string& s, const char* call) {
   fail(call, ": option 'state' must be \"open\", \"sliding\" or \"locked\", got \"", s, "\"");
 }
 
+constexpr Name kContactsOptions[] = {
+    {"state", "only contacts in this state: `\"open\"`, `\"sliding\"` or `\"locked\"`", "every state"},
+    {"block", "only contacts of this block (either side)", "every block"}};
+constexpr Name kContactFields[] = {{"vblock", "the block whose vertex is in contact"},
+                                   {"vertex", "that vertex (from 1)"},
+                                   {"eblock", "the block whose edge is in contact"},
+                                   {"edge", "that edge (from 1: vertex k to k + 1)"},
+                                   {"state", "`\"open\"`, `\"sliding\"` or `\"locked\"`"},
+                                   {"intact", "whether the joint there is still intact (holds cohesion and tension)"},
+                                   {"joint", "its JointMaterial"},
+                                   {"normal_force", "N (N/m), compression positive"},
+                                   {"shear_force", "S (N/m)"},
+                                   {"penetration", "the vertex's depth into the edge (m, positive: penetrating)"},
+                                   {"length", "the joint length the contact stands for (m)"}};
+
 // m:contacts{state = "sliding", block = b} → array of contact tables
 int m_contacts(lua_State* L) {
   ScriptModel& m = check_model(L, 1, "m:contacts");
   std::optional<ContactState> state;
   std::optional<BlockId> block;
   if (!lua_isnoneornil(L, 2)) {
-    const Options o(L, 2, "m:contacts", {"state", "block"});
+    const Options o(L, 2, "m:contacts", kContactsOptions);
     if (o.has("state")) state = parse_state(o.string("state"), "m:contacts");
     if (o.has("block")) {
       o.push("block");
@@ -521,42 +625,113 @@ int m_tostring(lua_State* L) {
 
 }  // namespace
 
+namespace {
+
+std::vector<Name> stats_names() {
+  std::vector<Name> n = {
+      {"dt", "the step's Δt (s)"},
+      {"open_close_iterations", "open-close iterations (one solve each)"},
+      {"cg_iterations", "conjugate-gradient iterations, over all rows"},
+      {"patch_iterations", "CG iterations confined to the patch of a re-solve"},
+      {"solver", "the backend that solved: `\"pcg\"` or `\"cholmod\"`"},
+      {"factorisations", "numeric factorisations of the system (cholmod)"},
+      {"solve_regime", "`\"short\"` or `\"long\"` solves"},
+      {"step_cuts", "times Δt was cut and the step redone"},
+      {"cut_reason", "why the last cut was made (empty: none)"},
+      {"contacts", "contacts in the list"},
+      {"closed_contacts", "contacts not open"},
+      {"contacts_searched", "whether a full contact search ran (else the list was reused)"},
+      {"max_displacement_ratio", "the largest vertex displacement over its bound g2·(half the model height)"},
+      {"landings", "contacts the landing law resolved"}};
+  static const std::vector<std::string> stage_names = [] {
+    std::vector<std::string> k;
+    for (int i = 0; i < kStageCount; ++i) k.push_back(msg("t_", kStageKeys[i]));
+    return k;
+  }();
+  for (const std::string& k : stage_names) n.push_back({k.c_str(), "seconds in that stage of the step"});
+  n.push_back({"t_total", "seconds of the whole step"});
+  return n;
+}
+
+Names energy_names() {
+  static const std::vector<Name> names = [] {
+    std::vector<Name> n;
+    for (const EnergyTermName& t : kEnergyTerms) n.push_back({t.name, t.doc});
+    n.push_back({"step", "the same terms for the last step alone"});
+    return n;
+  }();
+  return names;
+}
+
+}  // namespace
+
 void register_model(lua_State* L) {
+  static const std::vector<Name> stats = stats_names();
+  static constexpr Name totals[] = {{"steps", "steps taken"},
+                                    {"step_cuts", "times Δt was cut"},
+                                    {"open_close_iterations", "open-close iterations"},
+                                    {"cg_iterations", "CG iterations"},
+                                    {"patch_iterations", "CG iterations on re-solve patches"},
+                                    {"wall_seconds", "wall-clock seconds in steps"},
+                                    {"steps_per_second", "steps over wall_seconds"}};
+  static constexpr Name contact_summary[] = {{"total", "contacts in the list"},
+                                             {"open", "open contacts"},
+                                             {"sliding", "sliding contacts"},
+                                             {"locked", "locked contacts"},
+                                             {"intact", "contacts whose joint is intact"}};
   static const Method methods[] = {
-      {"controls", guarded<m_controls>, "m:controls{...} sets; m:controls() returns the current controls as a table."},
-      {"gravity", guarded<m_gravity>, "m:gravity(gx, gy)"},
-      {"step", guarded<m_step>, "m:step([n = 1]) → t, step"},
-      {"run_until", guarded<m_run_until>, "m:run_until(t) → t, step"},
+      {"controls", guarded<m_controls>,
+       "m:controls{...} → the controls as a table\nSets the controls given (the same options as dda.model{...}, "
+       "checked at once); m:controls() only returns them.",
+       control_option_names()},
+      {"gravity", guarded<m_gravity>, "m:gravity(gx, gy)\nSets the control gravity (m/s²)."},
+      {"step", guarded<m_step>, "m:step([n = 1]) → t, step\nTakes n steps; returns the time and the step count."},
+      {"run_until", guarded<m_run_until>, "m:run_until(t) → t, step\nSteps until the model's time reaches t (s)."},
       {"run", guarded<m_run>,
-       "m:run{time = t | steps = n, every = N, callback = f, realtime = r, background = false} → t, step: steps the "
-       "model (realtime = 1: paced to the wall clock, r: r simulated seconds per second; background = true: as "
-       "m:start)"},
+       "m:run{...} → t, step\nSteps for a time or a number of steps, calling `callback` between steps; paced to "
+       "the wall clock with `realtime`, on a thread of its own with `background` (as m:start).",
+       kRunOptions},
+      {"settle", guarded<m_settle>,
+       "m:settle{...} → {steps, ratio}\nBrings the model to equilibrium under gravity, initial stresses and the "
+       "loads' present values (static steps, the time held: docs/time_step.md, \"Settling\"), then to "
+       "rest: velocities zero, displacements counted from here, the energy budget anew. An error names the "
+       "block furthest from balance when it does not settle within max_steps.",
+       kSettleOptions, kSettleReturns},
       {"save", guarded<m_save>,
-       "m:save(file) → path: a checkpoint of the whole model (blocks, contacts, loads, the solver's state), from "
+       "m:save(file) → path\nA checkpoint of the whole model (blocks, contacts, loads, the solver's state), from "
        "which dda.load(file) or dda run --restart continues bit for bit. A relative name goes into the output "
        "folder; the file is replaced atomically."},
-      {"time", guarded<m_time>, "m:time() → simulated time (s)"},
-      {"steps", guarded<m_steps>, "m:steps() → steps taken"},
-      {"dt", guarded<m_dt>, "m:dt() → the last step's time step (s)"},
-      {"suggested_dt", guarded<m_suggested_dt>, "m:suggested_dt() → the time step the paper's Eqs. 1-3 give (s)"},
-      {"stats", guarded<m_stats>,
-       "m:stats() → the last step's figures {dt, open_close_iterations, cg_iterations, step_cuts, contacts, t_solve, "
-       "...}"},
-      {"energy", guarded<m_energy>,
-       "m:energy() → the energy budget (J/m): {kinetic, strain, contact (held now), gravity, point_loads, "
-       "pressure, targets, fixed_points, viscous, spring_boundaries, friction, impact (work on the blocks since the "
-       "first step), residual (held change − work), step = {the same for the last step}}"},
-      {"totals", guarded<m_totals>,
-       "m:totals() → {steps, step_cuts, open_close_iterations, cg_iterations, wall_seconds, steps_per_second}"},
+      {"time", guarded<m_time>, "m:time() → the simulated time (s)"},
+      {"steps", guarded<m_steps>, "m:steps() → the steps taken"},
+      {"dt", guarded<m_dt>, "m:dt() → the next step's Δt (s)"},
+      {"suggested_dt", guarded<m_suggested_dt>,
+       "m:suggested_dt() → s\nThe upper step time g1 = 0 stands for: the default rule for this model as it is "
+       "now (docs/time_step.md, \"The default time step\")."},
+      {"stats", guarded<m_stats>, "m:stats() → the last step's figures", {}, stats},
+      {"energy",
+       guarded<m_energy>,
+       "m:energy() → the energy budget (J/m)\nHeld now (kinetic, strain, contact), the work on the blocks since "
+       "the first step (or since m:settle), and the balance's residual.",
+       {},
+       energy_names()},
+      {"totals", guarded<m_totals>, "m:totals() → the totals over every step", {}, totals},
       {"hash", guarded<m_hash>, "m:hash() → a hex hash of the whole state (the same for any thread count)"},
       {"half_height", guarded<m_half_height>,
-       "m:half_height() → half the model height (m): the length g2 and contact_tolerance scale with"},
-      {"contacts", guarded<m_contacts>, "m:contacts{state = \"sliding\", block = b} → array of contact tables"},
-      {"contact_summary", guarded<m_contact_summary>, "m:contact_summary() → {total, open, sliding, locked, intact}"},
-      {"close", guarded<m_close>, "m:close(): frees the model now; every handle into it becomes invalid."},
+       "m:half_height() → m\nHalf the model's height: the length g2 and contact_tolerance scale with."},
+      {"contacts", guarded<m_contacts>,
+       "m:contacts{...} → an array of contact tables\nThe contacts now, each a table with the keys below.",
+       kContactsOptions, kContactFields},
+      {"contact_summary",
+       guarded<m_contact_summary>,
+       "m:contact_summary() → the contacts counted by state",
+       {},
+       contact_summary},
+      {"close", guarded<m_close>, "m:close()\nFrees the model now; every handle into it becomes invalid."},
       {}};
   static const luaL_Reg meta[] = {{"__gc", m_gc}, {"__tostring", m_tostring}, {nullptr, nullptr}};
-  define_type(L, kModelType, methods, meta);
+  static const Method no_methods[] = {{}};
+  define_type(L, kModelType, no_methods, meta);
+  add_model_methods(L, methods, "Running and reading");
 }
 
 }  // namespace dda::script

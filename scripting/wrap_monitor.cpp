@@ -22,12 +22,20 @@ bool valid_name(const std::string& s) {
   return s != "." && s != "..";
 }
 
+constexpr Name kMonitorOptions[] = {
+    {"at", "{x, y}: the material point followed (it moves with its block)", nullptr},
+    {"fields", "the fields recorded, e.g. {\"sxx\", \"vx\", \"vy\"} (the monitor fields: lua_api.md)", nullptr},
+    {"every", "record every this many steps", "1"},
+    {"name", "its name, and its CSV file's: <out>/<name>.csv", "\"monitor1\", \"monitor2\", ..."},
+    {"block", "the Block the point belongs to (when `at` lies on several)", "the block containing `at`"},
+    {"csv", "write the CSV file (false: in memory only)", "true"}};
+
 // m:monitor{at = {x, y}, fields = {"sxx", ...}, every = 1, name = "centre", block = b, csv = true} → Monitor
 int m_monitor(lua_State* L) {
   ScriptModel& m = check_model(L, 1, "m:monitor");
   check_not_busy(m, "m:monitor");
   Session& session_ = session(L);
-  const Options o(L, 2, "m:monitor", {"at", "fields", "every", "name", "block", "csv"});
+  const Options o(L, 2, "m:monitor", kMonitorOptions);
   auto mon = std::make_unique<Monitor>();
   mon->point = o.point("at");
   BlockId b;
@@ -215,8 +223,57 @@ int mon_last(lua_State* L) {
   lua_pushnumber(L, s.mon->times.back());
   return 2;
 }
-int extreme(lua_State* L, const char* call, int mode) {  // 0 max, 1 min, 2 peak |v|
+// The vector fields a monitor's pairs of columns make: their peaks are of
+// the magnitude, sqrt(x² + y²).
+struct VectorField {
+  const char* name;
+  Field x, y;
+};
+constexpr VectorField kVectorFields[] = {{"velocity", Field::Vx, Field::Vy}, {"displacement", Field::Ux, Field::Uy}};
+
+const VectorField* find_vector_field(const std::string& name) {
+  for (const VectorField& v : kVectorFields)
+    if (name == v.name) return &v;
+  return nullptr;
+}
+
+// The column of `f` in this monitor, or fails naming what it records.
+std::size_t column(const Monitor& mon, Field f, const char* call, const std::string& asked) {
+  for (std::size_t k = 0; k < mon.fields.size(); ++k)
+    if (mon.fields[k] == f) return k;
+  std::string have;
+  for (Field g : mon.fields) have += have.empty() ? field_name(g) : std::string(", ") + field_name(g);
+  fail(call, ": monitor '", mon.name, "' does not record '", field_name(f), "', which '", asked, "' needs (it records ",
+       have, "; add it to the monitor's fields)");
+}
+
+// The row of the largest magnitude of a vector field: pushes |v|, its time,
+// and the two components then (nil when nothing is recorded).
+int vector_peak(lua_State* L, const Self& s, const VectorField& v, const char* call) {
+  const auto& x = s.mon->values[column(*s.mon, v.x, call, v.name)];
+  const auto& y = s.mon->values[column(*s.mon, v.y, call, v.name)];
+  if (x.empty()) {
+    lua_pushnil(L);
+    return 1;
+  }
+  std::size_t best = 0;
+  double best_magnitude = std::hypot(x[0], y[0]);
+  for (std::size_t i = 1; i < x.size(); ++i)
+    if (const double magnitude = std::hypot(x[i], y[i]); magnitude > best_magnitude)
+      best = i, best_magnitude = magnitude;
+  lua_pushnumber(L, best_magnitude);
+  lua_pushnumber(L, s.mon->times[best]);
+  lua_pushnumber(L, x[best]);
+  lua_pushnumber(L, y[best]);
+  return 4;
+}
+
+enum class Extreme { Max, Min, Peak };
+
+int extreme(lua_State* L, const char* call, Extreme mode) {
   const Self s = self_monitor(L, call);
+  if (mode != Extreme::Min && lua_type(L, 2) == LUA_TSTRING)
+    if (const VectorField* v = find_vector_field(lua_tostring(L, 2))) return vector_peak(L, s, *v, call);
   const std::size_t k = field_arg(L, 2, *s.mon, call);
   const auto& v = s.mon->values[k];
   if (v.empty()) {
@@ -225,7 +282,9 @@ int extreme(lua_State* L, const char* call, int mode) {  // 0 max, 1 min, 2 peak
   }
   std::size_t best = 0;
   for (std::size_t i = 1; i < v.size(); ++i) {
-    const bool better = mode == 0 ? v[i] > v[best] : mode == 1 ? v[i] < v[best] : std::fabs(v[i]) > std::fabs(v[best]);
+    const bool better = mode == Extreme::Max   ? v[i] > v[best]
+                        : mode == Extreme::Min ? v[i] < v[best]
+                                               : std::fabs(v[i]) > std::fabs(v[best]);
     if (better) best = i;
   }
   lua_pushnumber(L, v[best]);
@@ -233,9 +292,14 @@ int extreme(lua_State* L, const char* call, int mode) {  // 0 max, 1 min, 2 peak
   return 2;
 }
 // monitor:max("sxx") → value, time; monitor:min; monitor:peak (largest |value|)
-int mon_max(lua_State* L) { return extreme(L, "monitor:max", 0); }
-int mon_min(lua_State* L) { return extreme(L, "monitor:min", 1); }
-int mon_peak(lua_State* L) { return extreme(L, "monitor:peak", 2); }
+int mon_max(lua_State* L) { return extreme(L, "monitor:max", Extreme::Max); }
+int mon_min(lua_State* L) { return extreme(L, "monitor:min", Extreme::Min); }
+int mon_peak(lua_State* L) { return extreme(L, "monitor:peak", Extreme::Peak); }
+// monitor:ppv() → the peak particle velocity, its time, vx, vy then
+int mon_ppv(lua_State* L) {
+  const Self s = self_monitor(L, "monitor:ppv");
+  return vector_peak(L, s, kVectorFields[0], "monitor:ppv");
+}
 // monitor:row(i) → {step = , time = , sxx = , ...}; i from 1, negative from the end
 int mon_row(lua_State* L) {
   const Self s = self_monitor(L, "monitor:row");
@@ -292,11 +356,12 @@ int mon_tostring(lua_State* L) {
 void register_monitor(lua_State* L) {
   static const Method model_methods[] = {
       {"monitor", guarded<m_monitor>,
-       "m:monitor{at = {x, y}, fields = {\"sxx\", ...}, every = 1, name = \"centre\", block = b, csv = true} → "
-       "Monitor"},
+       "m:monitor{...} → Monitor\nFollows a material point: its fields every `every` steps into memory and into "
+       "<out>/<name>.csv (a header, one whole row per record).",
+       kMonitorOptions},
       {"monitors", guarded<m_monitors>, "m:monitors() → list of every monitor of the model"},
       {}};
-  add_model_methods(L, model_methods);
+  add_model_methods(L, model_methods, "Monitors");
   static const Method methods[] = {
       {"name", guarded<mon_name>, "monitor:name() → its name"},
       {"file", guarded<mon_file>, "monitor:file() → the path of its CSV file (nil with csv = false)"},
@@ -307,9 +372,17 @@ void register_monitor(lua_State* L) {
       {"series", guarded<mon_series>, "monitor:series(\"sxx\") → {v1, v2, ...} (one per recorded row)"},
       {"value", guarded<mon_value>, "monitor:value(\"sxx\") → the value now (not necessarily recorded)"},
       {"last", guarded<mon_last>, "monitor:last(\"sxx\") → last recorded value, its time (nil when nothing recorded)"},
-      {"max", guarded<mon_max>, "monitor:max(\"sxx\") → value, time; monitor:min; monitor:peak (largest |value|)"},
+      {"max", guarded<mon_max>,
+       "monitor:max(\"sxx\") → the largest recorded value, its time; of a vector field (\"velocity\", "
+       "\"displacement\") as monitor:peak"},
       {"min", guarded<mon_min>, "monitor:min(\"sxx\") → the smallest recorded value, its time"},
-      {"peak", guarded<mon_peak>, "monitor:peak(\"sxx\") → the recorded value of largest |value|, its time"},
+      {"peak", guarded<mon_peak>,
+       "monitor:peak(\"sxx\") → the recorded value of largest |value|, its time; monitor:peak(\"velocity\") or "
+       "(\"displacement\") → the largest magnitude sqrt(x² + y²) of that vector (the monitor records both "
+       "components: vx, vy or ux, uy), its time, and the two components then"},
+      {"ppv", guarded<mon_ppv>,
+       "monitor:ppv() → the peak particle velocity: the largest recorded sqrt(vx² + vy²) (m/s), its time, and vx, vy "
+       "then; the monitor records vx and vy (the largest component alone: monitor:peak(\"vx\"))"},
       {"row", guarded<mon_row>, "monitor:row(i) → {step = , time = , sxx = , ...}; i from 1, negative from the end"},
       {"block", guarded<mon_block>, "monitor:block() → the Block its material point belongs to"},
       {"position", guarded<mon_position>, "monitor:position() → x, y of the material point now"},

@@ -82,9 +82,35 @@ render::Rgb read_rgb(const Options& o, const char* key) {
   return render::Rgb{static_cast<std::uint8_t>(c[0]), static_cast<std::uint8_t>(c[1]), static_cast<std::uint8_t>(c[2])};
 }
 
-#define DDA_FRAME_KEYS                                                                                               \
-  "field", "width", "height", "colormap", "range", "view", "magnify", "edges", "edge_width", "contacts", "monitors", \
-      "velocity", "arrow_scale", "colorbar", "info", "title", "background", "supersample", "scale", "joints"
+// What a frame shows (render::FrameOptions), for m:frame and m:frames.
+constexpr Name kFrameOptions[] = {
+    {"field",
+     "what colours the blocks: `\"sigma_xx\"`, `\"sigma_yy\"`, `\"tau_xy\"`, `\"sigma_1\"`, `\"von_mises\"` (MPa), "
+     "`\"velocity\"` (m/s), `\"displacement\"` (m) or `\"none\"`",
+     "\"sigma_yy\""},
+    {"width", "pixels, 16 to 8192", "1280"},
+    {"height", "pixels, 16 to 8192", "720"},
+    {"colormap", "`\"coolwarm\"` (blue compression, red tension) or `\"viridis\"`",
+     "coolwarm for signed fields, viridis for magnitudes"},
+    {"range",
+     "{min, max}: a fixed colour range in SI units (Pa, m/s, m); `\"frame\"`: each frame's own, ±max|value| or "
+     "[0, max]; in m:frames also `\"grow\"`: the widest so far",
+     "\"frame\""},
+    {"view", "{x1, y1, x2, y2}: the world window shown (m)", "the model's bounds plus 4 %"},
+    {"magnify", "deformation drawn magnified: initial + magnify × (current − initial)", "1"},
+    {"edges", "draw the block outlines (joints)", "true"},
+    {"edge_width", "their width (pixels)", "1"},
+    {"contacts", "mark contact vertices: open white, sliding magenta, locked black", "false"},
+    {"monitors", "mark monitor points with their names", "true"},
+    {"velocity", "velocity arrows at block centroids, with a reference arrow", "false"},
+    {"arrow_scale", "arrow length (m) per m/s", "the longest arrow 6 % of the view"},
+    {"colorbar", "a colour bar with ticks, the field's name and unit", "true"},
+    {"info", "a top line: title or field, time and step", "true"},
+    {"title", "replaces the field's name on the top line", "the field's name"},
+    {"background", "{r, g, b} (0-255)", "{255, 255, 255}"},
+    {"supersample", "1 to 4: drawn at k× size and averaged (smoother edges)", "1"},
+    {"scale", "a scale bar (and the magnification when magnify ≠ 1)", "true"},
+    {"joints", "failed joints drawn in red over the edges", "false"}};
 
 // `grow` (sequences only): set when range = "grow" asks for a range that
 // widens with the data; nullptr refuses it (a single frame).
@@ -130,11 +156,35 @@ render::FrameOptions read_frame_options(const Options& o, bool* grow = nullptr) 
   return f;
 }
 
+// Options made of `first` and then `rest`.
+std::vector<Name> joined(std::initializer_list<Name> first, Names rest) {
+  std::vector<Name> n(first);
+  n.insert(n.end(), rest.begin(), rest.end());
+  return n;
+}
+
+const std::vector<Name> kFrameCallOptions =
+    joined({{"file", "the PNG file (a relative name goes into the output folder)", nullptr}}, kFrameOptions);
+const std::vector<Name> kFramesOptions = joined(
+    {{"folder", "its folder (a relative name goes into the output folder)", "\"frames\""},
+     {"every", "a frame every this many steps", "—"},
+     {"every_time", "a frame each time the simulated time passes a multiple of this (s)", "—"},
+     {"steps", "{first, last}: frames only in these steps (last -1: no end)", "every step"},
+     {"times", "{t0, t1}: frames only in these times (s; t1 -1: no end)", "every time"},
+     {"movie", "a movie made from the frames when the sequence ends, if ffmpeg is on the PATH (e.g. \"film.mp4\")",
+      "none"},
+     {"fps", "the movie's frames per second", "30"},
+     {"fixed", "view and arrow scale fixed from the first frame (false: each frame its own)", "true"},
+     {"prefix", "file name stem", "the field's name"},
+     {"digits", "zero-padded width of the frame number", "5"},
+     {"on_error", "`\"stop\"` the run when a frame cannot be written, or `\"continue\"` with a warning", "\"stop\""}},
+    kFrameOptions);
+
 // m:frame{file = "frame.png", field = ..., ...} → path written
 int m_frame(lua_State* L) {
   ScriptModel& m = check_model(L, 1, "m:frame");
   check_not_busy(m, "m:frame");
-  const Options o(L, 2, "m:frame", {"file", DDA_FRAME_KEYS});
+  const Options o(L, 2, "m:frame", kFrameCallOptions);
   const render::FrameOptions f = read_frame_options(o);
   const auto path = in_out_dir(L, o.string("file"));
   create_parent(path, "m:frame");
@@ -148,9 +198,7 @@ int m_frame(lua_State* L) {
 int m_frames(lua_State* L) {
   ScriptModel& m = check_model(L, 1, "m:frames");
   check_not_busy(m, "m:frames");
-  const Options o(L, 2, "m:frames",
-                  {"folder", "every", "every_time", "prefix", "digits", "on_error", "fixed", "steps", "times", "movie",
-                   "fps", DDA_FRAME_KEYS});
+  const Options o(L, 2, "m:frames", kFramesOptions);
   render::SequenceOptions so;
   so.frame = read_frame_options(o, &so.grow_range);
   so.folder = in_out_dir(L, o.string("folder", "frames"));
@@ -271,10 +319,13 @@ std::vector<double> read_numbers(lua_State* L, int idx, const std::string& call,
   return v;
 }
 
-// One series: {name = , x = {...}, y = {...}, color = {r, g, b}, width = } or
-// {name = , monitor = mon, field = "sxx"} (x = the monitor's times).
+// One series of dda.plot: {name = , x = {...}, y = {...}, color = {r, g, b},
+// width = } or {name = , monitor = mon, field = "sxx"} (x = the monitor's
+// times). dda.plot's documentation lists these.
+constexpr Name kSeriesOptions[] = {{"name", "", ""},  {"x", "", ""},     {"y", "", ""},    {"monitor", "", ""},
+                                   {"field", "", ""}, {"color", "", ""}, {"width", "", ""}};
 render::Series read_series(lua_State* L, int idx, const std::string& call) {
-  const Options o(L, idx, call, {"name", "x", "y", "monitor", "field", "color", "width"});
+  const Options o(L, idx, call, kSeriesOptions);
   render::Series s;
   s.name = o.string("name", "");
   if (o.has("monitor")) {
@@ -308,9 +359,24 @@ render::Series read_series(lua_State* L, int idx, const std::string& call) {
   return s;
 }
 
-#define DDA_PLOT_KEYS                                                                                            \
-  "file", "title", "x_label", "x_unit", "y_label", "y_unit", "x_scale", "y_scale", "width", "height", "x_range", \
-      "y_range", "legend", "grid", "background"
+// What a plot shows (render::PlotSpec), for dda.plot and monitor:plot.
+constexpr Name kPlotOptions[] = {
+    {"file", "the PNG file (a relative name goes into the output folder)", nullptr},
+    {"title", "the plot's title", "none (monitor:plot: the monitor's name)"},
+    {"x_label", "the x axis title", "\"time\""},
+    {"x_unit", "its unit, shown as \"label (unit)\"", "\"s\""},
+    {"y_label", "the y axis title", "none (monitor:plot: the field)"},
+    {"y_unit", "its unit", "none (monitor:plot: MPa, m/s or m)"},
+    {"x_scale", "data × x_scale = the axis value", "1"},
+    {"y_scale", "data × y_scale = the axis value (e.g. 1e-6 for Pa → MPa)", "1 (monitor:plot of a stress: 1e-6)"},
+    {"width", "pixels, 64 to 8192", "1000"},
+    {"height", "pixels, 64 to 8192", "600"},
+    {"x_range", "{min, max} of the x axis", "the data's, rounded out to ticks"},
+    {"y_range", "{min, max} of the y axis", "the data's, rounded out to ticks"},
+    {"legend", "`\"best\"`, `\"top_right\"`, `\"top_left\"`, `\"bottom_right\"`, `\"bottom_left\"` or `\"none\"`",
+     "\"best\" (monitor:plot: none)"},
+    {"grid", "grid lines", "true"},
+    {"background", "{r, g, b} (0-255)", "{255, 255, 255}"}};
 
 void read_plot_options(const Options& o, render::PlotSpec& p) {
   p.title = o.string("title", p.title);
@@ -335,6 +401,15 @@ void read_plot_options(const Options& o, render::PlotSpec& p) {
   if (o.has("background")) p.background = read_rgb(o, "background");
 }
 
+const std::vector<Name> kDdaPlotOptions = joined(
+    {{"series",
+      "the lines: a list of {name = , x = {...}, y = {...}, color = {r, g, b}, width = (pixels, 2)}, or of {name = , "
+      "monitor = m, field = \"sxx\"} (x: the monitor's times)",
+      nullptr}},
+    kPlotOptions);
+const std::vector<Name> kMonitorPlotOptions =
+    joined({{"field", "the recorded field plotted against time", nullptr}}, kPlotOptions);
+
 // A plot against time. (Strings swapped in: GCC 12 warns falsely, -Wrestrict,
 // about assigning literals here.)
 render::PlotSpec time_plot() {
@@ -347,7 +422,7 @@ render::PlotSpec time_plot() {
 
 // dda.plot{file = "plot.png", series = {{...}, ...}, title, x_label, ...} → path
 int dda_plot(lua_State* L) {
-  const Options o(L, 1, "dda.plot", {"series", DDA_PLOT_KEYS});
+  const Options o(L, 1, "dda.plot", kDdaPlotOptions);
   render::PlotSpec p = time_plot();
   read_plot_options(o, p);
   if (o.push("series") != LUA_TTABLE)
@@ -371,7 +446,7 @@ int dda_plot(lua_State* L) {
 int mon_plot(lua_State* L) {
   Handle* h = check_handle(L, 1, kMonitorType, "monitor:plot", "self");
   const Monitor& mon = h->model->monitor(h->id);
-  const Options o(L, 2, "monitor:plot", {"field", DDA_PLOT_KEYS});
+  const Options o(L, 2, "monitor:plot", kMonitorPlotOptions);
   const std::string field = o.string("field");
   const auto f = parse_field(field);
   if (!f) fail("monitor:plot: unknown field '", field, "'; known fields: ", field_list());
@@ -401,17 +476,15 @@ int mon_plot(lua_State* L) {
 
 void register_render(lua_State* L) {
   static const Method model_methods[] = {
-      {"frame", guarded<m_frame>,
-       "m:frame{file = \"frame.png\", field = ..., width, height, range = {min, max}, view = {x1, y1, x2, y2}, "
-       "magnify, contacts, joints, velocity, arrow_scale, scale, monitors, colorbar, info, title, ...} → path written"},
+      {"frame", guarded<m_frame>, "m:frame{...} → the path written\nOne PNG frame of the model now.",
+       kFrameCallOptions},
       {"frames", guarded<m_frames>,
-       "m:frames{folder = \"frames\", every = N | every_time = dt, steps = {first, last}, times = {t0, t1}, movie = "
-       "\"film.mp4\", fps = 30, fixed = true, range = \"frame\" | \"grow\" | {min, max}, prefix, digits, on_error = "
-       "\"stop\" | \"continue\", ...frame options} → Frames: a numbered PNG sequence during the run; view and arrow "
-       "scale fixed from the first frame (fixed = false: each frame its own); colours by each frame's own range "
-       "unless one is declared (\"grow\": the widest so far); a movie at the end when ffmpeg is on the PATH"},
+       "m:frames{...} → Frames\nA numbered PNG sequence during the run (every N steps or every dt of simulated "
+       "time), drawn on a worker thread; view and arrow scale fixed from the first frame, colours by each frame's "
+       "own range unless one is declared; a movie at the end when ffmpeg is on the PATH.",
+       kFramesOptions},
       {}};
-  add_model_methods(L, model_methods);
+  add_model_methods(L, model_methods, "Frames");
   static const Method methods[] = {
       {"count", guarded<fr_count>, "frames:count() → frames captured so far"},
       {"capture", guarded<fr_capture>, "frames:capture(): a frame now, due or not"},
@@ -427,15 +500,17 @@ void register_render(lua_State* L) {
   static const luaL_Reg meta[] = {{"__tostring", fr_tostring}, {nullptr, nullptr}};
   define_type(L, kFramesType, methods, meta);
   static const Method monitor_methods[] = {
-      {"plot", guarded<mon_plot>, "monitor:plot{field = \"sxx\", file = \"sxx.png\", ...plot options} → path"}, {}};
+      {"plot", guarded<mon_plot>, "monitor:plot{...} → the path written\nA recorded field against time, as PNG.",
+       kMonitorPlotOptions},
+      {}};
   add_methods(L, kMonitorType, monitor_methods);
 }
 
 void register_render_functions(lua_State* L) {
   static const Method functions[] = {
-      {"plot", guarded<dda_plot>, "dda.plot{file = \"plot.png\", series = {{...}, ...}, title, x_label, ...} → path"},
+      {"plot", guarded<dda_plot>, "dda.plot{...} → the path written\nA line plot of series, as PNG.", kDdaPlotOptions},
       {}};
-  set_methods(L, functions);
+  set_methods(L, functions, "dda");
 }
 
 void attach_session_frames(lua_State* L, int model_idx) {

@@ -37,11 +37,17 @@ std::filesystem::path in_out_dir(lua_State* L, const std::string& p) {
   return path.is_absolute() ? path : session(L).out_dir / path;
 }
 
+constexpr Name kVtuOptions[] = {{"folder", "its folder (a relative name goes into the output folder)", "\"vtu\""},
+                                {"every", "files every this many steps", "—"},
+                                {"every_time", "files each time the simulated time passes a multiple of this (s)", "—"},
+                                {"prefix", "put before the files' names (blocks_00000.vtu, ...)", "\"\""},
+                                {"contacts", "write the contacts too (contacts_NNNNN.vtu, contacts.pvd)", "true"}};
+
 // m:vtu{...} → dda.Vtu
 int m_vtu(lua_State* L) {
   ScriptModel& m = check_model(L, 1, "m:vtu");
   check_not_busy(m, "m:vtu");
-  const Options o(L, 2, "m:vtu", {"folder", "every", "every_time", "prefix", "contacts"});
+  const Options o(L, 2, "m:vtu", kVtuOptions);
   VtuOptions v;
   v.folder = in_out_dir(L, o.string("folder", "vtu"));
   v.prefix = o.string("prefix", "");
@@ -93,11 +99,12 @@ int vtu_tostring(lua_State* L) {
 void register_vtu(lua_State* L) {
   static const Method model_methods[] = {
       {"vtu", guarded<m_vtu>,
-       "m:vtu{folder = \"vtu\", every = N | every_time = dt, prefix = \"\", contacts = true} → Vtu: ParaView files "
-       "(blocks_00000.vtu, contacts_00000.vtu, ... and blocks.pvd, contacts.pvd in the folder) every N steps or dt "
-       "seconds, the first before the first step; with neither, only when vtu:write() is called"},
+       "m:vtu{...} → Vtu\nParaView files (blocks_00000.vtu, contacts_00000.vtu, ... and the series blocks.pvd, "
+       "contacts.pvd) every N steps or dt seconds, the first before the first step; with neither, only when "
+       "vtu:write() is called.",
+       kVtuOptions},
       {}};
-  add_model_methods(L, model_methods);
+  add_model_methods(L, model_methods, "ParaView files");
   static const Method methods[] = {
       {"write", guarded<vtu_write>, "vtu:write() → path of the blocks file: a frame now"},
       {"count", guarded<vtu_count>, "vtu:count() → frames written"},

@@ -33,6 +33,8 @@
 --          stays under 1 % of its amplitude at the centre and in every frame, and
 --          the arrival is within 2 % of the exact one (the 2-D bar's, from its
 --          plate modes, with the joints' delay from the exact jointed 1-D bar).
+--          out/result.csv: the peak compression (Pa) and its time (s), a row of
+--          dda sweep's table.
 
 local dda = require "dda"
 local bars = require "paper.bars"
@@ -150,4 +152,5 @@ if centre:count() > 0 then
                           exact_arrival * 1e3), 0)
     end
   end
+  return { peak_compression = -sxx, t_peak = t_peak }   -- DIR/result.csv; dda sweep's columns
 end

@@ -71,6 +71,13 @@ class Boundaries {
   Vec2 free_field_velocity(int id, double y) const;
   int add_spring_boundary(const Blocks& blocks, const std::vector<EdgeRef>& edges, double p, bool per_length);
   std::vector<Vec2> boundary_point_forces(int id) const;
+  // Whether a boundary moves the blocks (a displacement target, an incident
+  // wave), not only holds or resists them (fixed points, springs, dashpots).
+  bool drives_motion() const {
+    for (const Boundary& b : boundaries_)
+      if (b.incident) return true;
+    return !targets_.empty();
+  }
 
   // The step: springs and dashpots into the block terms, serially in a fixed
   // order (fixed points, targets at t_end, boundary points). stiff_spring is

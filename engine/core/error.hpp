@@ -1,5 +1,5 @@
 #pragma once
-// Errors in two tiers (design.md §2):
+// Errors in two tiers:
 //  - dda::Error: anything a user can cause (bad geometry, bad material, a step
 //    that diverges). The message names the object and the cause; callers catch
 //    it and carry on (the console stays up, batch runs exit non-zero).

@@ -7,7 +7,7 @@
 //   CutInput in;                      // domain, holes, sets, lines, regions
 //   BlockSet blocks = cut_blocks(in); // throws dda::Error on bad input
 //
-// Conventions (see README, "Block generation"):
+// Conventions (see docs/formulation.md, "Block generation"):
 //  - SI units (metres). Angles in degrees: a joint set's dip is measured from
 //    the +x axis, counter-clockwise (0 = horizontal, 90 = vertical).
 //  - A set's spacing is measured perpendicular to its joints, and one joint

@@ -25,6 +25,8 @@ class Loads {
   int add_pressure_load(const Blocks& blocks, const std::vector<EdgeRef>& edges, double pressure);
   void set_pressure(int id, double pressure);
   void set_pressure_history(int id, History pressure);
+  // No point load and no pressure.
+  bool empty() const { return point_loads_.empty() && pressure_loads_.empty(); }
 
   // The step: forces at t_end into the right-hand side, serially in a fixed
   // order (few next to the blocks).

@@ -53,7 +53,7 @@ constexpr ControlSpec choice(const char* name, std::span<const char* const> name
 }
 
 // One row per control, in the order Lua lists them. The doc strings are the
-// "meaning" column of docs/scripting.md's controls table.
+// "meaning" column of docs/lua_api.md's controls table.
 const ControlSpec kControls[] = {
     choice(
         "plane", kPlaneNames, [](const Controls& c) { return static_cast<int>(c.plane); },
@@ -64,7 +64,9 @@ const ControlSpec kControls[] = {
         "normal contact spring stiffness (N/m); 0 = 50 × the largest E"),
     number(
         "g1", [](Controls& c) -> double& { return c.g1; }, kZeroOrPositive,
-        "upper limit of the time step (s); 0 = from the paper's Eqs. 1–3"),
+        "upper limit of the time step (s); 0 = the default rule (docs/time_step.md, \"The default time "
+        "step\"): a model moved by gravity alone takes sqrt(h_min/|g|)/20, a dynamically loaded one the paper's "
+        "Eqs. 1–3; the run log says which"),
     number(
         "g2", [](Controls& c) -> double& { return c.g2; }, kPositive,
         "largest step displacement / half the model height; exceeding it cuts Δt"),

@@ -7,8 +7,9 @@
 // name (the Lua name), its type, its check, its documentation and how the
 // docs show its default (the value itself is the field's initializer below).
 // The Lua layer reads, writes and checks controls through the table alone,
-// the engine checks them through it (validate_controls), and the table of
-// docs/scripting.md is generated from it (controls_markdown_table; a test
+// the engine checks them through it (validate_controls), and the controls
+// table of the Lua reference, docs/lua_api.md, is generated from it
+// (controls_markdown_table; the test LuaApiReference.DocsAreTheBindingsOwn
 // holds the two equal). Adding a control is its field here and its row there.
 #include <span>
 #include <string>
@@ -31,25 +32,23 @@ void archive_controls(ArchiveReader& ar, Controls& c);
 
 struct Controls {
   PlaneMode plane = PlaneMode::Stress;
-  double g0 = 0;      // normal contact spring (N/m per unit thickness); 0 → 50 × largest E
-  double g1 = 0;      // upper step time (s); 0 → estimate from Eqs. 1–3 (suggested_time_step)
-  double g2 = 0.005;  // largest step displacement / half the model height
-  double gg = 1;      // dynamic parameter: share of velocity carried into the next step
-  // Time integration (block/time_scheme.hpp); auto: world/wave_model.hpp.
-  Integrator integrator = Integrator::Auto;
-  double rho_inf = 0.9;      // generalized-α: spectral radius at high frequency
-  double shear_ratio = 0.4;  // shear spring = shear_ratio × g0 (Shi's 2/5)
-  int open_close_limit = 6;  // open-close iterations before Δt is cut and the step redone
-  // Open-close hysteresis of gap decisions and intact joints, as a fraction
-  // of half the model height: a closed contact opens once separated by more
-  // than this, an open one closes once penetrated by more; an intact joint
-  // fails once its shear force exceeds its strength by the shear spring
-  // times this. Without it, contacts that carry next to no force (the
-  // Poisson-loaded vertical joints of a wall) flip state on round-off and the
-  // iteration never settles. (Under ContactLaw::Shi, friction decisions take
-  // it too; under Holding those of contacts that are not intact joints have
-  // their own band, in the step's units: contact/contact_law.hpp,
-  // contact_slack.)
+  double g0 = 0;                            // normal contact spring (N/m per unit thickness); 0 → 50 × largest E
+  double g1 = 0;                            // upper step time (s); 0 → the default rule (world/time_step_rule.hpp)
+  double g2 = 0.005;                        // largest step displacement / half the model height
+  double gg = 1;                            // dynamic parameter: share of velocity carried into the next step
+  Integrator integrator = Integrator::Auto;  // time integration (block/time_scheme.hpp; auto: world/wave_model.hpp)
+  double rho_inf = 0.9;                     // generalized-α: spectral radius at high frequency
+  double shear_ratio = 0.4;                 // shear spring = shear_ratio × g0 (Shi's 2/5)
+  int open_close_limit = 6;                 // open-close iterations before Δt is cut and the step redone
+  // Open-close hysteresis under ContactLaw::Shi, as a fraction of half the
+  // model height, for every decision: a closed contact opens once separated
+  // by more than this, an open one closes once penetrated by more, an intact
+  // joint fails once its shear force exceeds its strength by the shear spring
+  // times this, and friction decides with the same band. Without it,
+  // contacts that carry next to no force (the Poisson-loaded vertical joints
+  // of a wall) flip state on round-off and the iteration never settles.
+  // ContactLaw::Holding does not use it: its bands are in the step's units
+  // (contact/contact_law.hpp, contact_slack).
   double contact_tolerance = 1e-9;
   // The contact law (contact/contact_law.hpp): Holding, in which friction
   // holds (the default); Shi, the law of Shi (1988) as the engine had it
@@ -149,7 +148,7 @@ const ControlSpec* find_control(std::string_view name);
 // Throws dda::Error naming the first control out of its range.
 void validate_controls(const Controls& c);
 
-// The controls table of docs/scripting.md (header, separator, one row each).
+// The controls table of docs/lua_api.md (header, separator, one row each).
 std::string controls_markdown_table();
 
 }  // namespace dda

@@ -108,7 +108,7 @@ void account_step_energy(WorldState& w, const VecX& d, const TimeScheme& scheme,
       },
       [&] { contacts = contact_energy(w.contacts, lin, d, contact_law); });
   const Loads::Work loads = w.loads.step_work(w.blocks, d);
-  const Boundaries::Work bounds = w.boundaries.step_work(w.time, w.time + w.dt, fixed_spring, w.blocks, d, scheme);
+  const Boundaries::Work bounds = w.boundaries.step_work(w.time, w.step_end_time(), fixed_spring, w.blocks, d, scheme);
 
   EnergyTerms step;
   step.kinetic = blocks.kinetic_after;

@@ -35,19 +35,28 @@ struct EnergyTerms {
 };
 
 // Every term by name (the Lua names: m:energy() and the monitor fields
-// "energy_<name>"), in the order above.
+// "energy_<name>"), in the order above, with what it is.
 struct EnergyTermName {
   const char* name;
   double EnergyTerms::*term;
+  const char* doc;
 };
 inline constexpr EnergyTermName kEnergyTerms[] = {
-    {"kinetic", &EnergyTerms::kinetic},         {"strain", &EnergyTerms::strain},
-    {"contact", &EnergyTerms::contact},         {"gravity", &EnergyTerms::gravity},
-    {"point_loads", &EnergyTerms::point_loads}, {"pressure", &EnergyTerms::pressure},
-    {"targets", &EnergyTerms::targets},         {"fixed_points", &EnergyTerms::fixed_points},
-    {"viscous", &EnergyTerms::viscous},         {"spring_boundaries", &EnergyTerms::spring_boundaries},
-    {"friction", &EnergyTerms::friction},       {"impact", &EnergyTerms::impact},
-    {"residual", &EnergyTerms::residual},
+    {"kinetic", &EnergyTerms::kinetic, "kinetic energy held now, ½·vᵀMv per block (strain rates included)"},
+    {"strain", &EnergyTerms::strain, "strain energy held now, ½·A·σᵀE⁻¹σ per block"},
+    {"contact", &EnergyTerms::contact, "energy held now in the closed contacts' springs, ½N²/k_n (+ ½S²/k_s locked)"},
+    {"gravity", &EnergyTerms::gravity, "work of gravity on the blocks"},
+    {"point_loads", &EnergyTerms::point_loads, "work of the point loads"},
+    {"pressure", &EnergyTerms::pressure, "work of the pressures on edges"},
+    {"targets", &EnergyTerms::targets, "work of the prescribed motions (displacement targets)"},
+    {"fixed_points", &EnergyTerms::fixed_points, "work of the fixed points' springs"},
+    {"viscous", &EnergyTerms::viscous, "work of the viscous boundaries and the strains' damping (≤ 0: absorbed)"},
+    {"spring_boundaries", &EnergyTerms::spring_boundaries, "work of the spring boundaries (≤ 0)"},
+    {"friction", &EnergyTerms::friction, "work of friction at sliding contacts (≤ 0: dissipated)"},
+    {"impact", &EnergyTerms::impact, "work of the landing law's impacts (≤ 0 for e ≤ 1)"},
+    {"residual", &EnergyTerms::residual,
+     "(held now − held at the start) − work: energy the time integrator and the contacts' state changes made "
+     "(> 0) or dissipated (< 0)"},
 };
 
 struct EnergyBudget {

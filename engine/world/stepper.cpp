@@ -51,6 +51,7 @@
 #include "core/parallel.hpp"
 #include "geometry/polygon.hpp"
 #include "world/energy.hpp"
+#include "world/time_step_rule.hpp"
 
 namespace dda {
 
@@ -146,12 +147,13 @@ void Stepper::begin_step(WorldState& w) {
   set_up_solver(w);
 }
 
-// g0 = 50 × the largest E and g1 from Eqs. 1–3 where the controls say 0
-// (automatic); Δt starts at g1 and never exceeds it.
+// g0 = 50 × the largest E and g1 from the default time step rule
+// (world/time_step_rule.hpp) where the controls say 0 (automatic); Δt starts
+// at g1 and never exceeds it.
 void Stepper::derive_automatic_controls(WorldState& w) {
   const Controls& c = w.controls;
   g0_ = w.contact_spring();
-  g1_ = c.g1 > 0 ? c.g1 : w.suggested_time_step();
+  g1_ = c.g1 > 0 ? c.g1 : default_time_step(w).dt;
   if (w.dt <= 0 || w.dt > g1_) w.dt = g1_;
 }
 
@@ -235,11 +237,11 @@ Rejection Stepper::attempt(WorldState& w) {
 
 // The blocks' own terms, loads and boundaries: once per attempt (they do not
 // depend on the contact states). Histories are evaluated at the end of the
-// step, t + Δt.
+// step, t + Δt (t while settling).
 void Stepper::assemble_own_terms(WorldState& w) {
   StageTimer timer(stats_.profile, Stage::Assemble);
   const Controls& c = w.controls;
-  const double t_end = w.time + w.dt;
+  const double t_end = w.step_end_time();
   assemble_block_terms(w.blocks, elastic_, c.gravity, c.strain_damping, scheme_, own_);
   w.loads.add_terms(t_end, w.blocks, own_);
   w.boundaries.add_terms(t_end, c.fixed_point_factor * g0_, w.blocks, scheme_, own_);
@@ -402,7 +404,8 @@ void Stepper::control_step(WorldState& w, Rejection r) {
 // ---- Update -------------------------------------------------------------------
 
 // The accepted step: material points first (they move with their block's old
-// centroid), then the blocks, then what the contacts keep; time advances.
+// centroid), then the blocks, then what the contacts keep; time advances
+// (unless settling).
 void Stepper::update(WorldState& w) {
   StageTimer timer(stats_.profile, Stage::Update);
   account_step_energy(w, solution_, scheme_, elastic_, linearisation_, contact_law_,
@@ -418,7 +421,7 @@ void Stepper::update(WorldState& w) {
   keep_shear_references(w.contacts, linearisation_, open_close_, contact_law_);
   landing_.unload_shear_springs(w.contacts, linearisation_, open_close_, contact_law_.law);
   keep_lagged_friction(w.contacts, open_close_, contact_law_);
-  w.time += w.dt;
+  w.time = w.step_end_time();
   ++w.steps;
 }
 
@@ -434,7 +437,7 @@ void Stepper::land(WorldState& w) {
                        c.restitution < 0 ? std::vector<char>() : w.boundaries.held_blocks(w.blocks.count()), c.gravity,
                        c.restitution, solution_);
   if (stats_.landings == 0) return;
-  const double spring = c.fixed_point_factor * g0_, t_end = w.time + w.dt;
+  const double spring = c.fixed_point_factor * g0_, t_end = w.step_end_time();
   const Boundaries::Work solved = w.boundaries.step_work(w.time, t_end, spring, w.blocks, solved_, scheme_);
   const Boundaries::Work landed = w.boundaries.step_work(w.time, t_end, spring, w.blocks, solution_, scheme_);
   account_impact_energy(w.energy, landing_.energy(), solved, landed);

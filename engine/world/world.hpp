@@ -11,6 +11,8 @@
 #include <vector>
 
 #include "solver/block_sparse_matrix.hpp"
+#include "world/settle.hpp"
+#include "world/time_step_rule.hpp"
 #include "world/world_state.hpp"
 
 namespace dda {
@@ -150,9 +152,16 @@ class World {
 
   // One DDA time step (world/stepper.cpp: the step as its table of contents).
   StepStats step();
-  // Δt from the paper's Eqs. 1–3 with a = 0.05 and b = 0.177:
-  // min(a·h_min/C_P, 2b·sqrt(m_min/g0)).
-  double suggested_time_step() const { return s_.suggested_time_step(); }
+  // The upper step time g1 = 0 stands for, and why (world/time_step_rule.hpp).
+  TimeStepChoice default_time_step() const { return dda::default_time_step(s_); }
+
+  // Settling (world/settle.hpp): while the returned guard lives, step()
+  // takes settling steps (static, the time held); unbalanced_force() is the
+  // convergence measure after each; come_to_rest() ends settling.
+  std::unique_ptr<SettlingSteps> settling() { return std::make_unique<SettlingSteps>(s_); }
+  UnbalancedForce unbalanced_force() const { return dda::unbalanced_force(s_); }
+  void come_to_rest() { dda::come_to_rest(s_); }
+  bool settling() const { return s_.hold_time; }
 
   // ---- Read access ----------------------------------------------------------
   double time() const { return s_.time; }

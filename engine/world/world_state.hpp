@@ -38,6 +38,9 @@ struct WorldState {
   // blocks in place changed (world/wave_model.hpp).
   WaveModel wave;
   Remeshing remeshing;
+  // Settling (World::settle_step): the step's loads, prescribed motions and
+  // incident waves take their values at `time`, which does not advance.
+  bool hold_time = false;
 
   // What a checkpoint holds (core/archive.hpp): all of it.
   template <class Archive>
@@ -56,11 +59,11 @@ struct WorldState {
 
   // Half the y extent of the blocks as they are now.
   double measured_half_height() const;
-  // Δt from the paper's Eqs. 1–3 with a = 0.05 and b = 0.177:
-  // min(a·h_min/C_P, 2b·sqrt(m_min/g0)).
-  double suggested_time_step() const;
   // The contact spring g0 (N/m): the controls', or 50 × the stiffest rock's E.
   double contact_spring() const;
+  // The time the step's loads and motions are evaluated at: t + Δt, or t
+  // while settling (hold_time).
+  double step_end_time() const { return hold_time ? time : time + dt; }
 };
 
 }  // namespace dda

@@ -28,6 +28,10 @@ std::filesystem::path resolve_script(const std::string& script);
 // `dda sweep SCRIPT --grid NAME=v1,v2 ...` (argv after "sweep"); returns the exit code.
 int run_sweep(int argc, char** argv);
 
+// The CPUs this process may use: its affinity mask (taskset, cgroups, a
+// batch system's binding), and SLURM_CPUS_PER_TASK when that is smaller.
+int usable_cpus();
+
 // The commit the binary was built from ("unknown" outside git).
 const char* commit_id();
 

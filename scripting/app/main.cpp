@@ -1,11 +1,7 @@
-// The dda executable:
-//   dda run SCRIPT.lua [--out DIR] [--threads N] [--set NAME=VALUE]... [--quiet]
-//                      [--frames N [--frame-field F] [--frame-size WxH]]
-//                      [--checkpoint-every N|Ts] [--restart FILE] [--live [ADDR:]PORT]
-//                      [--realtime F] [-- ARGS...]
-//   dda console [SCRIPT.lua] [--out DIR] [--threads N] [--set NAME=VALUE]... [--live [ADDR:]PORT]
-//   dda SCRIPT.lua ...      (same as dda run)
-//   dda --help | --version
+// The dda executable's command line: dda run | console | sweep, --help on
+// each, --version. A command-line error prints its cause and one line of
+// usage (exit status 2); --help prints the options (the man page is made
+// from `dda --help`).
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -13,6 +9,7 @@
 #include <string>
 
 #include "app.hpp"
+#include "lua_support.hpp"
 
 #ifdef DDA_HAVE_RENDER
 #include "core/error.hpp"
@@ -21,18 +18,16 @@
 
 namespace {
 
-const char* kUsage =
-    "usage:\n"
-    "  dda run SCRIPT.lua [options] [-- ARGS...]   run a script (batch)\n"
-    "  dda console [SCRIPT.lua] [options]          interactive prompt (runs SCRIPT first)\n"
-    "  dda SCRIPT.lua [options]                    same as dda run\n"
-    "  dda sweep SCRIPT.lua --grid NAME=V1,V2,... [--jobs N] [--task ID | --collect] [options]\n"
-    "                                              one run per combination, a summary table\n"
-    "                                              (dda sweep --help for more)\n"
-    "options:\n"
+// The options of dda run and dda console, as --help prints them (help2man
+// makes the man page from `dda --help`: "Usage:", then sections headed
+// "Name:" with items indented under them).
+const char* kRunOptions =
+    "Options:\n"
     "  --out DIR          output folder for monitor CSV files (default: out)\n"
     "  --threads N        worker threads for every model (0: every core); overrides the script\n"
     "  --set NAME=VALUE   a parameter the script reads with dda.param(\"NAME\", default)\n"
+    "  --list-params      run the script up to its first step and list the parameters it reads\n"
+    "                     (name, default, value) instead of running it\n"
     "  --quiet            no progress line\n"
     "  --live [ADDR:]PORT serve a live view of the run at http://ADDR:PORT/ (ADDR: 127.0.0.1, this\n"
     "                     machine only; 0.0.0.0: every address; PORT 0: any free port)\n"
@@ -43,20 +38,81 @@ const char* kUsage =
     "  --frame-range MIN,MAX  a fixed colour range in SI units (default: each frame's own)\n"
     "  --frame-view X1,Y1,X2,Y2  the world window they show in m (default: the first frame's)\n"
     "  --movie FILE       with --frames: DIR/FILE made with ffmpeg when the run ends (if on the PATH)\n"
-    "  --frame-field F    the field of those frames: sigma_xx (default), sigma_yy, tau_xy,\n"
-    "                     sigma_1, von_mises, velocity, displacement, none\n"
+    "  --frame-field F    the field of those frames: sigma_yy (default, as m:frame), sigma_xx,\n"
+    "                     tau_xy, sigma_1, von_mises, velocity, displacement, none\n"
     "  --frame-size WxH   their size in pixels (default 1280x720)\n"
     "  --vtu N            every model writes ParaView files (VTU, PVD) every N steps into DIR/vtu\n"
     "  --checkpoint-every N | Ts  every model writes DIR/checkpoint.ckpt every N steps or T s of\n"
     "                     simulated time (e.g. 0.01s), and when Ctrl-C stops the run\n"
-    "  --restart FILE     continue from a checkpoint: the script runs again, and its model takes\n"
-    "                     the checkpoint's state at its first stepping call\n"
-    "exit status: 0 success, 1 error in the script, 2 bad command line, 130 interrupted (Ctrl-C)\n";
+    "  --restart FILE     (dda run) continue from a checkpoint: the script runs again, and its model\n"
+    "                     takes the checkpoint's state at its first stepping call\n"
+    "  -h, --help         this text\n"
+    "\n"
+    "Exit status:\n"
+    "  0 success, 1 error in the script, 2 bad command line, 130 interrupted (Ctrl-C)\n";
 
-int usage_error(const char* fmt, const char* arg) {
+const char* kCommands =
+    "Commands:\n"
+    "  run SCRIPT.lua     run a script to its end (batch); dda SCRIPT.lua is the same\n"
+    "  console [SCRIPT.lua]  a Lua prompt with the dda module (runs SCRIPT first)\n"
+    "  sweep SCRIPT.lua --grid NAME=V1,V2,...\n"
+    "                     one run per combination of the values, a summary table (dda sweep --help)\n"
+    "  --version          the version and the commit it is built from\n"
+    "dda COMMAND --help describes one command. The Lua API: docs/lua_api.md, or help() in the console.\n"
+    "\n";
+
+// The one line a command-line error prints under its message.
+std::string short_usage(const std::string& command) {
+  if (command == "run") return "usage: dda run SCRIPT.lua [options] [-- ARGS...]  (dda run --help lists the options)";
+  if (command == "console") return "usage: dda console [SCRIPT.lua] [options]  (dda console --help lists the options)";
+  return "usage: dda run|console|sweep SCRIPT.lua [options]  (dda --help for more)";
+}
+
+void print_help(const std::string& command) {
+  if (command == "run") {
+    std::fputs(
+        "Usage: dda run SCRIPT.lua [options] [-- ARGS...]\n"
+        "Runs SCRIPT.lua (a model in Lua: docs/scripting.md) to its end. What it writes goes into the output\n"
+        "folder, with its run log (DIR/run.log); ARGS after -- reach the script as arg[1], arg[2], ...\n"
+        "SCRIPT.lua not found as given: an installed dda runs its scene of that name.\n\n",
+        stdout);
+  } else if (command == "console") {
+    std::fputs(
+        "Usage: dda console [SCRIPT.lua] [options]\n"
+        "Runs SCRIPT.lua (if given) and leaves a Lua prompt with its models alive: help() documents the\n"
+        "API, Tab completes names, Ctrl-C stops a run at the next step, Ctrl-D leaves.\n\n",
+        stdout);
+  } else {
+    std::fputs(
+        "Usage: dda run SCRIPT.lua [options] [-- ARGS...]\n"
+        "  or:  dda console [SCRIPT.lua] [options]\n"
+        "  or:  dda sweep SCRIPT.lua --grid NAME=V1,V2,... [options]\n"
+        "2-D Discontinuous Deformation Analysis of jointed rock under dynamic loads, driven by Lua scripts.\n\n",
+        stdout);
+    std::fputs(kCommands, stdout);
+  }
+  std::fputs(kRunOptions, stdout);
+}
+
+// "unknown option '--frame'" (did you mean '--frames'?)
+std::string unknown_option(const std::string& given) {
+  static const char* const known[] = {
+      "--out",        "--threads", "--set",         "--list-params", "--quiet", "--frames",           "--frame-range",
+      "--frame-view", "--movie",   "--frame-field", "--frame-size",  "--vtu",   "--checkpoint-every", "--restart",
+      "--live",       "--realtime", "--help"};
+  std::string text = "unknown option '" + given + "'";
+  const char* best = nullptr;
+  int best_distance = 3;  // suggest only a near miss
+  for (const char* k : known)
+    if (const int d = dda::script::edit_distance(given, k); d < best_distance) best = k, best_distance = d;
+  if (best) text += std::string(" (did you mean '") + best + "'?)";
+  return text;
+}
+
+int usage_error(const std::string& command, const char* fmt, const char* arg) {
   std::fprintf(stderr, "dda: ");
   std::fprintf(stderr, fmt, arg);
-  std::fprintf(stderr, "\n%s", kUsage);
+  std::fprintf(stderr, "\n%s\n", short_usage(command).c_str());
   return 2;
 }
 
@@ -65,13 +121,13 @@ int usage_error(const char* fmt, const char* arg) {
 int main(int argc, char** argv) {
   using dda::script::RunOptions;
   if (argc < 2) {
-    std::fputs(kUsage, stderr);
+    std::fprintf(stderr, "%s\n", short_usage("").c_str());
     return 2;
   }
   int i = 1;
   std::string command = argv[i];
   if (command == "--help" || command == "-h" || command == "help") {
-    std::fputs(kUsage, stdout);
+    print_help("");
     return 0;
   }
   if (command == "--version") {
@@ -85,8 +141,9 @@ int main(int argc, char** argv) {
   } else if (command.size() > 4 && command.compare(command.size() - 4, 4, ".lua") == 0) {
     command = "run";
   } else {
-    return usage_error("unknown command '%s'", argv[1]);
+    return usage_error("", "unknown command '%s'", argv[1]);
   }
+  auto bad = [&command](const char* fmt, const char* arg) { return usage_error(command, fmt, arg); };
 
   RunOptions opt;
   for (int k = 0; k < argc; ++k) opt.command_line.append(k ? " " : "").append(argv[k]);
@@ -97,27 +154,30 @@ int main(int argc, char** argv) {
       (void)name;
       return argv[++i];
     };
-    if (a == "--") {
+    if (a == "--help" || a == "-h") {
+      print_help(command);
+      return 0;
+    } else if (a == "--") {
       for (++i; i < argc; ++i) opt.script_args.push_back(argv[i]);
       break;
     } else if (a == "--out") {
       const char* v = value("--out");
-      if (!v || !*v) return usage_error("%s needs a folder", "--out");
+      if (!v || !*v) return bad("%s needs a folder", "--out");
       opt.session.out_dir = v;
     } else if (a == "--threads") {
       const char* v = value("--threads");
       char* end = nullptr;
       const long n = v ? std::strtol(v, &end, 10) : -1;
       if (!v || !*v || *end != '\0' || n < 0 || n > 4096)
-        return usage_error("--threads needs a whole number >= 0, got '%s'", v ? v : "");
+        return bad("--threads needs a whole number >= 0, got '%s'", v ? v : "");
       opt.session.threads = static_cast<int>(n);
     } else if (a == "--set") {
       const char* v = value("--set");
       const char* eq = v ? std::strchr(v, '=') : nullptr;
-      if (!v || !eq || eq == v) return usage_error("--set needs NAME=VALUE, got '%s'", v ? v : "");
+      if (!v || !eq || eq == v) return bad("--set needs NAME=VALUE, got '%s'", v ? v : "");
       opt.session.params[std::string(v, eq)] = std::string(eq + 1);
     } else if (a.rfind("--set=", 0) == 0 || a.rfind("--out=", 0) == 0 || a.rfind("--threads=", 0) == 0) {
-      return usage_error("write '%s' with a space instead of '=' after the option", a.c_str());
+      return bad("write '%s' with a space instead of '=' after the option", a.c_str());
     } else if (a == "--frames") {
       // EVERY, or FROM:TO:EVERY (steps; TO empty: no end)
       const char* v = value("--frames");
@@ -127,9 +187,9 @@ int main(int argc, char** argv) {
                             std::sscanf(v, "%ld:%ld:%ld%c", &from, &to, &every, &tail) == 3 ||
                             (std::sscanf(v, "%ld::%ld%c", &from, &every, &tail) == 2 && (to = -1, true)));
       if (!ok || every < 1 || from < 0 || (to >= 0 && to < from))
-        return usage_error("--frames needs EVERY or FROM:TO:EVERY (whole steps, EVERY >= 1), got '%s'", v ? v : "");
+        return bad("--frames needs EVERY or FROM:TO:EVERY (whole steps, EVERY >= 1), got '%s'", v ? v : "");
 #ifndef DDA_HAVE_RENDER
-      return usage_error("%s: this dda was built without the renderer", "--frames");
+      return bad("%s: this dda was built without the renderer", "--frames");
 #endif
       opt.session.frames_every = every;
       opt.session.frames_from = from;
@@ -139,7 +199,7 @@ int main(int argc, char** argv) {
       double lo = 0, hi = 0;
       char tail = 0;
       if (!v || std::sscanf(v, "%lf,%lf%c", &lo, &hi, &tail) != 2 || !(hi > lo))
-        return usage_error("--frame-range needs MIN,MAX with MIN < MAX (SI units: Pa, m/s, m), got '%s'", v ? v : "");
+        return bad("--frame-range needs MIN,MAX with MIN < MAX (SI units: Pa, m/s, m), got '%s'", v ? v : "");
       opt.session.frames_range_set = true;
       opt.session.frames_range[0] = lo;
       opt.session.frames_range[1] = hi;
@@ -149,21 +209,21 @@ int main(int argc, char** argv) {
       char tail = 0;
       if (!v || std::sscanf(v, "%lf,%lf,%lf,%lf%c", &q[0], &q[1], &q[2], &q[3], &tail) != 4 || !(q[2] > q[0]) ||
           !(q[3] > q[1]))
-        return usage_error("--frame-view needs X1,Y1,X2,Y2 (m) with X1 < X2 and Y1 < Y2, got '%s'", v ? v : "");
+        return bad("--frame-view needs X1,Y1,X2,Y2 (m) with X1 < X2 and Y1 < Y2, got '%s'", v ? v : "");
       opt.session.frames_view_set = true;
       for (int k = 0; k < 4; ++k) opt.session.frames_view[k] = q[k];
     } else if (a == "--movie") {
       const char* v = value("--movie");
-      if (!v || !*v) return usage_error("%s needs a file name (e.g. run.mp4)", "--movie");
+      if (!v || !*v) return bad("%s needs a file name (e.g. run.mp4)", "--movie");
       opt.session.frames_movie = v;
     } else if (a == "--frame-field") {
       const char* v = value("--frame-field");
-      if (!v || !*v) return usage_error("%s needs a field name", "--frame-field");
+      if (!v || !*v) return bad("%s needs a field name", "--frame-field");
 #ifdef DDA_HAVE_RENDER
       try {
         dda::render::parse_field(v);
       } catch (const dda::Error& e) {
-        return usage_error("--frame-field: %s", e.what());
+        return bad("--frame-field: %s", e.what());
       }
 #endif
       opt.session.frames_field = v;
@@ -172,7 +232,7 @@ int main(int argc, char** argv) {
       int w = 0, h = 0;
       char tail = 0;
       if (!v || std::sscanf(v, "%dx%d%c", &w, &h, &tail) != 2 || w < 16 || h < 16)
-        return usage_error("--frame-size needs WIDTHxHEIGHT (e.g. 1280x720), got '%s'", v ? v : "");
+        return bad("--frame-size needs WIDTHxHEIGHT (e.g. 1280x720), got '%s'", v ? v : "");
       opt.session.frames_width = w;
       opt.session.frames_height = h;
     } else if (a == "--vtu") {
@@ -180,12 +240,12 @@ int main(int argc, char** argv) {
       char* end = nullptr;
       const long n = v ? std::strtol(v, &end, 10) : -1;
       if (!v || !*v || *end != '\0' || n < 1)
-        return usage_error("--vtu needs a whole number of steps >= 1, got '%s'", v ? v : "");
+        return bad("--vtu needs a whole number of steps >= 1, got '%s'", v ? v : "");
       opt.session.vtu_every = n;
     } else if (a == "--restart") {
       const char* v = value("--restart");
-      if (!v || !*v) return usage_error("%s needs a checkpoint file", "--restart");
-      if (command != "run") return usage_error("%s: only dda run continues from a checkpoint", "--restart");
+      if (!v || !*v) return bad("%s needs a checkpoint file", "--restart");
+      if (command != "run") return bad("%s: only dda run continues from a checkpoint", "--restart");
       opt.session.restart_file = v;
     } else if (a == "--checkpoint-every") {
       // N (steps) or Ts (seconds of simulated time)
@@ -198,35 +258,37 @@ int main(int argc, char** argv) {
       } else if (v && std::sscanf(v, "%lf%c%c", &seconds, &unit, &tail) == 2 && unit == 's' && seconds > 0) {
         opt.session.checkpoint_seconds = seconds;
       } else {
-        return usage_error(
+        return bad(
             "--checkpoint-every needs N (steps >= 1) or Ts (seconds of simulated time > 0, e.g. "
             "0.01s), got '%s'",
             v ? v : "");
       }
     } else if (a == "--live") {
       const char* v = value("--live");
-      if (!v || !*v) return usage_error("%s needs [ADDR:]PORT (e.g. 8080)", "--live");
+      if (!v || !*v) return bad("%s needs [ADDR:]PORT (e.g. 8080)", "--live");
       opt.session.live_address = v;
     } else if (a == "--realtime") {
       const char* v = value("--realtime");
       char* end = nullptr;
       const double f = v ? std::strtod(v, &end) : 0;
       if (!v || !*v || *end != '\0' || !(f > 0) || !std::isfinite(f))
-        return usage_error("--realtime needs a factor > 0 (1: simulated time at the wall clock's pace), got '%s'",
-                           v ? v : "");
+        return bad("--realtime needs a factor > 0 (1: simulated time at the wall clock's pace), got '%s'", v ? v : "");
       opt.session.realtime = f;
     } else if (a == "--quiet" || a == "-q") {
       opt.session.quiet = true;
+    } else if (a == "--list-params") {
+      if (command != "run") return bad("%s: only dda run lists a script's parameters", "--list-params");
+      opt.session.params_only = true;
     } else if (a.rfind("--", 0) == 0) {
-      return usage_error("unknown option '%s'", a.c_str());
+      return bad("%s", unknown_option(a).c_str());
     } else if (opt.script.empty()) {
       opt.script = a;
     } else {
-      return usage_error("unexpected argument '%s' (script arguments go after --)", a.c_str());
+      return bad("unexpected argument '%s' (script arguments go after --)", a.c_str());
     }
   }
   if (command == "run") {
-    if (opt.script.empty()) return usage_error("%s", "dda run needs a script");
+    if (opt.script.empty()) return bad("%s", "dda run needs a script");
     return dda::script::run_batch(opt);
   }
   return dda::script::run_console(opt);

@@ -1,8 +1,10 @@
 // `dda run` (batch): the run log, a restart's checkpoint, the script in a
 // fresh state with Ctrl-C handled, and the end of the run (results, outputs
 // checked, exit status).
+#include <sched.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <chrono>
 #include <cstdio>
@@ -38,6 +40,19 @@ std::filesystem::path resolve_script(const std::string& script) {
 
 const char* commit_id() { return DDA_COMMIT; }
 
+int usable_cpus() {
+  int n = static_cast<int>(std::thread::hardware_concurrency());
+  cpu_set_t set;
+  CPU_ZERO(&set);
+  if (sched_getaffinity(0, sizeof set, &set) == 0) n = CPU_COUNT(&set);
+  if (const char* slurm = std::getenv("SLURM_CPUS_PER_TASK")) {
+    char* end = nullptr;
+    const long k = std::strtol(slurm, &end, 10);
+    if (end != slurm && *end == '\0' && k >= 1 && k < n) n = static_cast<int>(k);
+  }
+  return std::max(n, 1);
+}
+
 namespace {
 
 void log_start(Session& s, const RunOptions& options) {
@@ -52,7 +67,7 @@ void log_start(Session& s, const RunOptions& options) {
                  s.threads < 0    ? std::string("as the script sets them (--threads not given)")
                  : s.threads == 0 ? std::string("every core (--threads 0)")
                                   : msg(s.threads, " (--threads)"),
-                 "; ", std::thread::hardware_concurrency(), " hardware threads"));
+                 "; ", usable_cpus(), " CPUs usable (", std::thread::hardware_concurrency(), " hardware threads)"));
   std::string params;
   for (const auto& [k, v] : s.params) params += " " + k + "=" + v;
   s.log.line("parameters (--set):" + (params.empty() ? std::string(" none") : params));
@@ -155,9 +170,54 @@ int finish_batch(lua_State* L, bool ok, std::string error, int requested, std::c
   return status;
 }
 
+// dda run --list-params: the script runs up to its first stepping call (or
+// the first file it would write, Session::params_only) in a scratch output
+// folder, what it prints goes to stderr, and stdout gets the parameters it
+// read: one line each, name, default and the --set value, tab-separated.
+int list_params(const RunOptions& options) {
+  std::string scratch = (std::filesystem::temp_directory_path() / "dda-params-XXXXXX").string();
+  if (!mkdtemp(scratch.data())) {
+    std::fprintf(stderr, "dda: --list-params: cannot create a scratch folder in %s: %s\n",
+                 std::filesystem::temp_directory_path().c_str(), std::strerror(errno));
+    return 1;
+  }
+  Session s;
+  s.params = options.session.params;
+  s.threads = options.session.threads;
+  s.out_dir = scratch;
+  s.params_only = true;
+  lua_State* L = new_state(std::move(s));
+  if (!L) {
+    std::fprintf(stderr, "dda: cannot create a Lua state (not enough memory)\n");
+    return 1;
+  }
+  std::string error;
+  run_string(L,
+             "print = function(...) local t = table.pack(...) for i = 1, t.n do t[i] = tostring(t[i]) end "
+             "io.stderr:write(table.concat(t, '\\t', 1, t.n), '\\n') end io.output(io.stderr)",
+             "list-params", error);
+  const bool ran = run_file(L, resolve_script(options.script).string(), options.script_args, error);
+  const bool ok = ran || session(L).params_stopped;
+  if (!ok) std::fprintf(stderr, "dda: %s\n", error.c_str());
+  std::printf("# the parameters %s reads%s (name, default, --set value)\n", options.script.c_str(),
+              session(L).params_stopped ? " before its first step"
+              : ok                      ? ""
+                                        : " before its error");
+  for (const auto& [name, def] : session(L).params_read) {
+    const auto given = session(L).params.find(name);
+    std::printf("%s\t%s\t%s\n", name.c_str(), def.c_str(),
+                given == session(L).params.end() ? "" : given->second.c_str());
+  }
+  lua_close(L);
+  std::error_code ec;
+  std::filesystem::remove_all(scratch, ec);
+  return ok ? 0 : 1;
+}
+
 }  // namespace
 
 int run_batch(const RunOptions& options) {
+  if (options.session.params_only) return list_params(options);
   const auto start = std::chrono::steady_clock::now();
   Session s = options.session;
   if (!s.quiet) s.progress = isatty(fileno(stderr)) && isatty(fileno(stdout)) ? ProgressMode::Bar : ProgressMode::Lines;

@@ -30,6 +30,7 @@
 
 #include "app.hpp"
 #include "core/error.hpp"
+#include "lua_support.hpp"
 #include "output_file.hpp"
 
 extern char** environ;
@@ -46,15 +47,21 @@ const char* kSweepUsage =
     "as `dda run SCRIPT --out DIR/run_NNN --set NAME=V ...` in its own process and folder, and\n"
     "writes DIR/summary.csv: task, status, exit code, wall time, the grid values and what each\n"
     "run returned (`return {name = value, ...}` at the end of the script, or dda.result{...}).\n"
-    "  --jobs N     N runs at a time (default 1); each gets --threads cores/N unless --threads is given\n"
+    "  --jobs N     N runs at a time (default 1); each gets --threads CPUS/N unless --threads is given,\n"
+    "               CPUS the CPUs this process may use (its affinity; SLURM_CPUS_PER_TASK when smaller)\n"
     "  --out DIR    the sweep's folder (default: sweep)\n"
     "  --task ID    run combination ID only (0-based; e.g. --task $SLURM_ARRAY_TASK_ID), no summary\n"
     "  --collect    run nothing: write DIR/summary.csv from the run folders (after --task runs)\n"
     "  --list       print the combinations with their task IDs and run nothing\n"
+    "Before running anything, every grid name must be a parameter the script reads (dda run SCRIPT\n"
+    "--list-params lists them); a result named like a grid parameter gets the column NAME_result.\n"
     "exit status: 0 every run ok, 1 a run failed (its row says how), 2 bad command line\n";
 
 int usage(const std::string& text) {
-  std::fprintf(stderr, "dda sweep: %s\n%s", text.c_str(), kSweepUsage);
+  std::fprintf(stderr,
+               "dda sweep: %s\nusage: dda sweep SCRIPT.lua --grid NAME=V1,V2,... [options]  (dda sweep --help "
+               "lists the options)\n",
+               text.c_str());
   return 2;
 }
 
@@ -107,7 +114,7 @@ std::vector<std::string> split_values(const std::string& s) {
 int parse(int argc, char** argv, Plan& p) {
   static const std::set<std::string> with_value = {"--set",        "--threads",         "--frames",     "--frame-field",
                                                    "--frame-size", "--frame-range",     "--frame-view", "--vtu",
-                                                   "--movie",      "--checkpoint-every"};
+                                                   "--movie",      "--checkpoint-every", "--realtime", "--live"};
   std::set<std::string> names;
   for (int i = 0; i < argc; ++i) {
     const std::string a = argv[i];
@@ -203,6 +210,35 @@ struct Running {
   std::chrono::steady_clock::time_point start;
 };
 
+// Starts `args` (argv[0] a path) with stdin from /dev/null, stdout into
+// `out` and stderr into `err` (the same file when equal); returns its pid.
+pid_t spawn(std::vector<std::string> args, const std::string& out, const std::string& err) {
+  std::vector<char*> argv;
+  for (std::string& a : args) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  posix_spawn_file_actions_t fa;
+  posix_spawn_file_actions_init(&fa);
+  posix_spawn_file_actions_addopen(&fa, 0, "/dev/null", O_RDONLY, 0);
+  posix_spawn_file_actions_addopen(&fa, 1, out.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  if (err == out)
+    posix_spawn_file_actions_adddup2(&fa, 1, 2);
+  else
+    posix_spawn_file_actions_addopen(&fa, 2, err.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  pid_t pid = -1;
+  const int rc = posix_spawn(&pid, argv[0], &fa, nullptr, argv.data(), environ);
+  posix_spawn_file_actions_destroy(&fa);
+  if (rc != 0) throw Error(msg("cannot start '", argv[0], "': ", std::strerror(rc)));
+  return pid;
+}
+
+// The --set options of task id's grid values.
+std::vector<std::string> grid_sets(const Plan& p, long id) {
+  std::vector<std::string> args;
+  const auto values = p.values(id);
+  for (std::size_t k = 0; k < values.size(); ++k) args.insert(args.end(), {"--set", p.grid[k].name + "=" + values[k]});
+  return args;
+}
+
 // Starts `dda run` for task id, its output into the run folder's output.txt.
 pid_t start_run(const Plan& p, long id) {
   const auto dir = p.folder(id);
@@ -217,26 +253,98 @@ pid_t start_run(const Plan& p, long id) {
   write_file_atomically(dir / "params.txt", params);
 
   std::vector<std::string> args = {self_exe().string(), "run", p.script, "--out", dir.string()};
-  for (std::size_t k = 0; k < values.size(); ++k) args.insert(args.end(), {"--set", p.grid[k].name + "=" + values[k]});
+  const auto sets = grid_sets(p, id);
+  args.insert(args.end(), sets.begin(), sets.end());
   args.insert(args.end(), p.passthrough.begin(), p.passthrough.end());
   if (p.jobs > 1 && !p.threads_given)
-    args.insert(args.end(), {"--threads", std::to_string(std::max(1u, std::thread::hardware_concurrency() /
-                                                                          static_cast<unsigned>(p.jobs)))});
-  std::vector<char*> argv;
-  for (std::string& a : args) argv.push_back(a.data());
-  argv.push_back(nullptr);
-
+    args.insert(args.end(), {"--threads", std::to_string(std::max(1, usable_cpus() / p.jobs))});
   const std::string out = (dir / "output.txt").string();
-  posix_spawn_file_actions_t fa;
-  posix_spawn_file_actions_init(&fa);
-  posix_spawn_file_actions_addopen(&fa, 0, "/dev/null", O_RDONLY, 0);
-  posix_spawn_file_actions_addopen(&fa, 1, out.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-  posix_spawn_file_actions_adddup2(&fa, 1, 2);
-  pid_t pid = -1;
-  const int rc = posix_spawn(&pid, argv[0], &fa, nullptr, argv.data(), environ);
-  posix_spawn_file_actions_destroy(&fa);
-  if (rc != 0) throw Error(msg("cannot start '", argv[0], "': ", std::strerror(rc)));
-  return pid;
+  return spawn(std::move(args), out, out);
+}
+
+// ---- the grid's names, checked before anything runs ------------------------------------------
+
+// The parameters the script reads, from `dda run SCRIPT --list-params` with
+// the first combination's values: the script runs up to its first step.
+// False, with the reason in `why`, when that run failed.
+bool params_read(const Plan& p, std::set<std::string>& names, std::string& why) {
+  char scratch[] = "/tmp/dda-sweep-params-XXXXXX";
+  if (!mkdtemp(scratch)) {
+    why = msg("cannot create a scratch folder in /tmp: ", std::strerror(errno));
+    return false;
+  }
+  const std::filesystem::path dir = scratch;
+  std::vector<std::string> args = {self_exe().string(), "run", p.script, "--list-params", "--quiet"};
+  const auto sets = grid_sets(p, 0);
+  args.insert(args.end(), sets.begin(), sets.end());
+  for (std::size_t k = 0; k + 1 < p.passthrough.size(); ++k)
+    if (p.passthrough[k] == "--set") args.insert(args.end(), {"--set", p.passthrough[k + 1]});
+  int status = -1;
+  try {
+    const pid_t pid = spawn(std::move(args), (dir / "params.txt").string(), (dir / "output.txt").string());
+    while (waitpid(pid, &status, 0) < 0 && errno == EINTR) {}
+  } catch (const std::exception& e) {
+    why = e.what();
+  }
+  std::ifstream in(dir / "params.txt");
+  for (std::string line; std::getline(in, line);)
+    if (!line.empty() && line[0] != '#') names.insert(line.substr(0, line.find('\t')));
+  const bool ok = status == 0;
+  if (!ok && why.empty()) {
+    std::ifstream err(dir / "output.txt");
+    std::string last;
+    for (std::string line; std::getline(err, line);)
+      if (line.rfind("dda: ", 0) == 0 && last.empty()) last = line.substr(5);
+    why = last.empty() ? msg("dda run --list-params ended with status ", status) : last;
+  }
+  std::error_code ec;
+  std::filesystem::remove_all(dir, ec);
+  return ok;
+}
+
+// Whether `name` is a string literal ("name" or 'name') of the script or of
+// a Lua file beside it (a module it may require): a parameter it may read
+// only after its first step.
+bool named_in_sources(const std::filesystem::path& script, const std::string& name) {
+  std::vector<std::filesystem::path> files = {script};
+  std::error_code ec;
+  for (const auto& e : std::filesystem::directory_iterator(script.parent_path(), ec))
+    if (e.path().extension() == ".lua" && e.path() != script) files.push_back(e.path());
+  for (const auto& f : files) {
+    std::ifstream in(f);
+    std::stringstream text;
+    text << in.rdbuf();
+    const std::string s = text.str();
+    if (s.find('"' + name + '"') != std::string::npos || s.find('\'' + name + '\'') != std::string::npos) return true;
+  }
+  return false;
+}
+
+// 0, or the exit status of a usage error: a grid name the script never
+// reads would run every combination alike (a typo, --grid kn_typo=...).
+int check_grid_names(const Plan& p) {
+  std::set<std::string> read;
+  std::string why;
+  if (!params_read(p, read, why)) {
+    std::fprintf(stderr,
+                 "dda sweep: warning: the grid names are not checked: with the first combination's values the "
+                 "script stops before its first step (%s)\n",
+                 why.c_str());
+    return 0;
+  }
+  for (const Axis& a : p.grid) {
+    if (read.count(a.name) || named_in_sources(p.script, a.name)) continue;
+    std::string known, near;
+    int best = 3;
+    for (const std::string& n : read) {
+      known.append(known.empty() ? "" : ", ").append(n);
+      if (const int d = edit_distance(a.name, n); d < best) best = d, near = n;
+    }
+    return usage(msg("--grid ", a.name, ": the script never reads a parameter '", a.name, "'",
+                     near.empty() ? std::string() : msg(" (did you mean '", near, "'?)"),
+                     "; it reads: ", known.empty() ? std::string("none") : known, ". Nothing was run."));
+  }
+  return 0;
 }
 
 std::string status_name(int code) {
@@ -288,9 +396,21 @@ long write_summary(const Plan& p) {
     rows.push_back(read_row(p, id));
     for (const auto& [k, v] : rows.back().results) result_names.insert(k);
   }
+  // A result named like a column before it (a grid name, task, status, ...)
+  // gets the column NAME_result: every column name is once in the header.
+  std::set<std::string> taken = {"task", "status", "exit_code", "wall_s"};
+  for (const Axis& a : p.grid) taken.insert(a.name);
   std::string text = "task,status,exit_code,wall_s";
   for (const Axis& a : p.grid) text.append(",").append(csv_field(a.name));
-  for (const std::string& k : result_names) text.append(",").append(csv_field(k));
+  for (const std::string& k : result_names) {
+    std::string column = k;
+    while (taken.count(column)) column += "_result";
+    if (column != k)
+      std::printf("summary: the result '%s' is named like a column before it: its column is '%s'\n", k.c_str(),
+                  column.c_str());
+    taken.insert(column);
+    text.append(",").append(csv_field(column));
+  }
   text += "\n";
   long bad = 0;
   for (long id = 0; id < n; ++id) {
@@ -376,6 +496,8 @@ int run_sweep(int argc, char** argv) {
     if (!std::filesystem::is_regular_file(script, ec)) return usage(msg("no script '", p.script, "'"));
     p.script = std::filesystem::absolute(script).string();
   }
+  if (!p.collect && !p.list)
+    if (const int rc = check_grid_names(p)) return rc;
   if (p.list) {
     for (long id = 0; id < p.count(); ++id)
       std::printf("%ld %s %s\n", id, p.folder(id).c_str(), describe(p, id).c_str());

@@ -1,4 +1,4 @@
-// Inputs the fuzz targets (fuzz/, docs/fuzzing.md) found crashing or
+// Inputs the fuzz targets (fuzz/, docs/robustness.md, "Fuzzing") found crashing or
 // tripping a sanitizer, kept as plain tests: each must now be cut, or
 // refused with a dda::Error naming the item.
 #include <gtest/gtest.h>

@@ -7,6 +7,7 @@
 #include <spawn.h>
 #include <sys/wait.h>
 
+#include <algorithm>
 #include <chrono>
 #include <thread>
 
@@ -140,14 +141,35 @@ TEST(CliErrors, MissingScript) {
   EXPECT_NE(r.err.find("cannot open nowhere.lua"), std::string::npos) << r.err;
 }
 
+// A command-line error: exit status 2, the cause and one line of usage that
+// names the command's --help (not the whole help).
 TEST(CliErrors, BadCommandLine) {
   TempDir dir("cli");
-  EXPECT_EQ(run_dda("run x.lua --bogus", dir.path).exit_code, 2);
-  EXPECT_EQ(run_dda("run x.lua --set novalue", dir.path).exit_code, 2);
-  EXPECT_EQ(run_dda("run x.lua --threads -1", dir.path).exit_code, 2);
-  EXPECT_EQ(run_dda("run", dir.path).exit_code, 2);
-  EXPECT_EQ(run_dda("frobnicate", dir.path).exit_code, 2);
-  EXPECT_EQ(run_dda("--help", dir.path).exit_code, 0);
+  for (const char* args : {"run x.lua --bogus", "run x.lua --set novalue", "run x.lua --threads -1", "run",
+                           "frobnicate", "", "console --frames", "sweep x.lua"}) {
+    const auto r = run_dda(args, dir.path);
+    EXPECT_EQ(r.exit_code, 2) << args;
+    EXPECT_LE(std::count(r.err.begin(), r.err.end(), '\n'), 2) << args << ":\n" << r.err;
+    EXPECT_NE(r.err.find("usage: dda "), std::string::npos) << args << ":\n" << r.err;
+  }
+  EXPECT_NE(run_dda("run x.lua --frame x", dir.path).err.find("did you mean '--frames'?"), std::string::npos);
+  EXPECT_NE(run_dda("run x.lua --bogus", dir.path).err.find("dda run --help"), std::string::npos);
+}
+
+// --help on dda and on each command: exit status 0, its usage and options on stdout.
+TEST(CliErrors, HelpOnEveryCommand) {
+  TempDir dir("help");
+  for (const auto& [args, usage] : {std::pair{"--help", "Usage: dda run SCRIPT.lua"},
+                                    {"-h", "  or:  dda sweep"},
+                                    {"run --help", "Usage: dda run SCRIPT.lua"},
+                                    {"run x.lua -h", "Usage: dda run SCRIPT.lua"},
+                                    {"console --help", "Usage: dda console"},
+                                    {"sweep --help", "dda sweep SCRIPT.lua --grid"}}) {
+    const auto r = run_dda(args, dir.path);
+    EXPECT_EQ(r.exit_code, 0) << args << ":\n" << r.err;
+    EXPECT_NE(r.out.find(usage), std::string::npos) << args << ":\n" << r.out;
+    EXPECT_NE(r.out.find("--out"), std::string::npos) << args << ":\n" << r.out;
+  }
 }
 
 // --set values reach the script through dda.param: numbers when numeric,

@@ -5,8 +5,10 @@ combination (as a Slurm job array does) and --collect rebuilds the same table.
 Run: sweep_test.py path/to/dda"""
 import csv
 import os
+import shutil
+import subprocess
 
-from common import check, finish, read, run, scratch, write
+from common import DDA, check, finish, read, run, scratch, write
 
 SCRIPT = r"""
 local dda = require "dda"
@@ -66,7 +68,6 @@ check(strip(rows2) == strip(rows), "--collect after --task runs gives the same t
 
 # A task that never ran is a row too.
 os.remove(os.path.join(d, "array", "run_003", "status.txt"))
-import shutil
 shutil.rmtree(os.path.join(d, "array", "run_004"))
 run(args + ["--collect", "--out", "array"], d)
 rows3 = list(csv.DictReader(open(os.path.join(d, "array", "summary.csv"))))
@@ -82,4 +83,45 @@ r = run(["sweep", "study.lua"], d)
 check(r.returncode == 2 and "--grid" in r.stderr, "no grid", r.stderr)
 r = run(["sweep", "study.lua", "--grid", "a=1,2", "--list"], d)
 check(r.returncode == 0 and r.stdout.splitlines()[1].startswith("1 ") and "a=2" in r.stdout, "--list", r.stdout)
+check(len(r.stderr.splitlines()) <= 2, "a command-line error prints one line of usage, not the help", r.stderr)
+r = run(["sweep", "--help"], d)
+check(r.returncode == 0 and "--grid" in r.stdout and "--jobs" in r.stdout, "dda sweep --help", r.stdout)
+
+# A grid name the script never reads is refused before anything runs, with
+# the names it does read (here the script reads a, b, offset).
+r = run(["sweep", "study.lua", "--grid", "a=1,2", "--grid", "bb=x,y", "--out", "typo"], d)
+check(r.returncode == 2 and "never reads a parameter 'bb'" in r.stderr and "did you mean 'b'" in r.stderr and
+      "a, b, offset" in r.stderr, "a misspelt grid name is refused, naming the script's parameters", r.stderr)
+check(not os.path.exists(os.path.join(d, "typo")), "... and nothing ran", os.listdir(d))
+# A name read only after the first step (in a branch or at the end) is a
+# string in the script: accepted.
+write(os.path.join(d, "late.lua"), SCRIPT.replace("return {", "if dda.param('late', false) then a = a + 1 end\nreturn {"))
+r = run(["sweep", "late.lua", "--grid", "late=true,false", "--out", "late"], d)
+check(r.returncode == 0, "a name read after the first step is not refused", (r.stdout, r.stderr))
+r = run(["run", "study.lua", "--list-params", "--set", "a=2"], d)
+listed = [line.split("\t") for line in r.stdout.splitlines() if not line.startswith("#")]
+check(r.returncode == 0 and listed == [["a", "1", "2"], ["b", "x", ""], ["offset", "0", ""]],
+      "dda run --list-params: name, default, value given", (r.stdout, r.stderr))
+
+# A result named like a grid parameter gets its own column NAME_result.
+write(os.path.join(d, "clash.lua"), "local a = dda.param('a', 1)\nreturn { a = 10 * a, status = 'mine' }\n")
+r = run(["sweep", "clash.lua", "--grid", "a=1,2", "--out", "clash"], d)
+rows = list(csv.DictReader(open(os.path.join(d, "clash", "summary.csv"))))
+check(r.returncode == 0 and [(row["a"], row["a_result"], row["status"], row["status_result"]) for row in rows] ==
+      [("1", "10", "ok", "mine"), ("2", "20", "ok", "mine")] and "its column is 'a_result'" in r.stdout,
+      "results named like a column are renamed NAME_result", (r.stdout, rows))
+
+# The CPUs the process may use: its affinity, and SLURM_CPUS_PER_TASK when smaller.
+cpus = len(os.sched_getaffinity(0))
+r = run(["sweep", "clash.lua", "--grid", "a=1,2", "--jobs", "2", "--out", "jobs"], d)
+log = read(os.path.join(d, "jobs", "run_000", "run.log"))
+check("threads: %d (--threads); %d CPUs usable" % (max(1, cpus // 2), cpus) in log,
+      "--jobs 2 gives each run half the usable CPUs", log)
+r = run(["run", "clash.lua", "--out", "slurm"], d, env={"SLURM_CPUS_PER_TASK": "1"})
+check("; 1 CPUs usable" in read(os.path.join(d, "slurm", "run.log")), "SLURM_CPUS_PER_TASK=1: one CPU usable",
+      read(os.path.join(d, "slurm", "run.log")))
+if shutil.which("taskset"):
+    r = subprocess.run(["taskset", "-c", "0", DDA, "run", "clash.lua", "--out", "pinned"], cwd=d, capture_output=True)
+    check("; 1 CPUs usable" in read(os.path.join(d, "pinned", "run.log")), "taskset -c 0: one CPU usable",
+          read(os.path.join(d, "pinned", "run.log")))
 finish()
