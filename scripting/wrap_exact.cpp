@@ -27,13 +27,32 @@ std::vector<std::pair<double, double>> read_table(const Options& o, const char* 
   return out;
 }
 
+constexpr Name kPlateBarOptions[] = {
+    {"load", "{{t, p}, ...}: the end pressure (Pa, compression positive), piecewise linear, zero outside it", "—"},
+    {"x", "m from the loaded end", "0"},
+    {"y", "m from mid-height", "0"},
+    {"times", "{t, ...}: the times (s) of the answer", "—"},
+    {"E", "Young's modulus (Pa)", "5e10"},
+    {"nu", "Poisson's ratio", "0.25"},
+    {"density", "kg/m³", "2000"},
+    {"height", "the strip's height (m)", "1"},
+    {"plane", "`\"stress\"` or `\"strain\"`", "\"stress\""},
+    {"end", "the loaded end: `\"free\"` or `\"rollers\"` (held against lateral motion)", "\"free\""},
+    {"max_frequency", "Hz: the synthesis is cut (tapered) here", "20000"},
+    {"frequency_step", "Hz", "5"},
+    {"modes", "modes a free end's fit takes at least", "16"}};
+constexpr Name kJointSetOptions[] = {{"count", "N, the joints", "1"},
+                                     {"spacing", "m between neighbouring joints", "1"},
+                                     {"kn", "the joints' normal stiffness (Pa/m)", "1e10"},
+                                     {"E", "the rock's Young's modulus (Pa)", "5e10"},
+                                     {"density", "kg/m³", "2000"},
+                                     {"frequency", "Hz", "1000"}};
+
 // dda.exact_plate_bar{load = {{t, p}, ...}, x = , y = 0, times = {...}, E = , nu = ,
 //   density = , height = 1, plane = "stress", ["end"] = "free", max_frequency = 20000,
 //   frequency_step = 5, modes = 16} → {sxx, ...}
 int dda_exact_plate_bar(lua_State* L) {
-  const Options o(L, 1, "dda.exact_plate_bar",
-                  {"load", "x", "y", "times", "E", "nu", "density", "height", "plane", "end", "max_frequency",
-                   "frequency_step", "modes"});
+  const Options o(L, 1, "dda.exact_plate_bar", kPlateBarOptions);
   reference::Strip strip;
   strip.youngs = o.positive("E", strip.youngs);
   strip.poisson = o.number("nu", strip.poisson);
@@ -77,7 +96,7 @@ int dda_exact_plate_bar(lua_State* L) {
 
 // dda.exact_joint_set{count = N, spacing = s, kn = , E = , density = , frequency = f} → |T|, arg T
 int dda_exact_joint_set(lua_State* L) {
-  const Options o(L, 1, "dda.exact_joint_set", {"count", "spacing", "kn", "E", "density", "frequency"});
+  const Options o(L, 1, "dda.exact_joint_set", kJointSetOptions);
   reference::JointSet set;
   set.count = static_cast<int>(o.integer("count", 1));
   set.spacing = o.positive("spacing", set.spacing);
@@ -105,12 +124,14 @@ void register_exact_functions(lua_State* L) {
        "height = 1, plane = \"stress\", [\"end\"] = \"free\" | \"rollers\", max_frequency = 20000, frequency_step = "
        "5, modes = 16} → {sxx, ...}: the exact σxx (Pa, tension positive) at (x, y) (y from mid-height) and the "
        "times of a long elastic strip loaded at its end by the pressure p(t) (compression positive), by Fourier "
-       "synthesis of its symmetric Rayleigh–Lamb modes (docs/waves.md). A reference for the tests."},
+       "synthesis of its symmetric Rayleigh–Lamb modes (docs/waves.md). A reference for the tests.",
+       kPlateBarOptions},
       {"exact_joint_set", guarded<dda_exact_joint_set>,
        "dda.exact_joint_set{count = N, spacing = s, kn = , E = 50e9, density = 2000, frequency = f} → |T|, arg T: "
        "the transmission coefficient of a harmonic P wave at normal incidence across N parallel joints of normal "
        "stiffness kn (Pa/m) in a rock of modulus E (1-D: transfer matrices, docs/waves.md). A reference for the "
-       "tests."},
+       "tests.",
+       kJointSetOptions},
       {}};
   set_methods(L, functions, "dda");
 }

@@ -97,6 +97,9 @@ double signal_frequency(const LoadSignal& signal) {
   if (s.size() < 2) return 0;
   const double last = s.back().second;
   for (auto& p : s) p.second -= last;
+  // A load switched on at its first sample and held (a jump to its final
+  // value, however fast) is static: nothing of it varies after the start.
+  if (std::all_of(s.begin() + 1, s.end(), [](const auto& p) { return p.second == 0; })) return 0;
   // The whole energy (one-sided: ½∫s²dt) and the smallest sample spacing.
   double total = 0, spacing = 1e300;
   for (std::size_t j = 0; j + 1 < s.size(); ++j) {
@@ -113,7 +116,7 @@ double signal_frequency(const LoadSignal& signal) {
   // finds the frequency roughly, a fine one (500 steps below it) exactly.
   const double duration = s.back().first - s.front().first, f_end = 0.5 / spacing;
   const double coarse = energy_quantile(s, std::max(1 / (8 * duration), f_end / 4000), f_end, kEnergyShare * total);
-  return energy_quantile(s, std::min(1 / (8 * duration), coarse / 500), f_end, kEnergyShare * total);
+  return energy_quantile(s, coarse / 500, f_end, kEnergyShare * total);
 }
 
 LoadFrequency dynamic_load_frequency(const WorldState& w, std::span<const LoadSignal> script_signals) {
