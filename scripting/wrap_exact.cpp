@@ -120,17 +120,14 @@ int dda_exact_joint_set(lua_State* L) {
 void register_exact_functions(lua_State* L) {
   static const Method functions[] = {
       {"exact_plate_bar", guarded<dda_exact_plate_bar>,
-       "dda.exact_plate_bar{load = {{t, p}, ...}, x = , y = 0, times = {...}, E = 50e9, nu = 0.25, density = 2000, "
-       "height = 1, plane = \"stress\", [\"end\"] = \"free\" | \"rollers\", max_frequency = 20000, frequency_step = "
-       "5, modes = 16} → {sxx, ...}: the exact σxx (Pa, tension positive) at (x, y) (y from mid-height) and the "
-       "times of a long elastic strip loaded at its end by the pressure p(t) (compression positive), by Fourier "
-       "synthesis of its symmetric Rayleigh–Lamb modes (docs/waves.md). A reference for the tests.",
+       "dda.exact_plate_bar{...} → {sxx, ...}\nThe exact σxx (Pa, tension positive) at (x, y) at the times, in a long "
+       "elastic strip loaded at its end by the pressure p(t): Fourier synthesis of its symmetric Rayleigh–Lamb modes "
+       "(engine/reference/plate_bar.hpp, docs/waves.md). A reference for the tests.",
        kPlateBarOptions},
       {"exact_joint_set", guarded<dda_exact_joint_set>,
-       "dda.exact_joint_set{count = N, spacing = s, kn = , E = 50e9, density = 2000, frequency = f} → |T|, arg T: "
-       "the transmission coefficient of a harmonic P wave at normal incidence across N parallel joints of normal "
-       "stiffness kn (Pa/m) in a rock of modulus E (1-D: transfer matrices, docs/waves.md). A reference for the "
-       "tests.",
+       "dda.exact_joint_set{...} → |T|, arg T\nThe transmission coefficient of a harmonic P wave at normal incidence "
+       "across N parallel joints of normal stiffness kn in a 1-D rock (transfer matrices, "
+       "engine/reference/joint_set.hpp). A reference for the tests.",
        kJointSetOptions},
       {}};
   set_methods(L, functions, "dda");
