@@ -323,6 +323,9 @@ void PenaltyContacts::load(ArchiveReader& ar) {
   if (memory_.size() != contacts)
     throw Error(msg(ar.what(), " is damaged: the contact law's memory of ", memory_.size(), " contacts for a list of ",
                     contacts));
+  for (std::size_t i = 0; i < memory_.size(); ++i)
+    if (std::isnan(memory_[i].normal) || std::isnan(memory_[i].age))
+      throw Error(msg(ar.what(), " is damaged: the contact law's memory of contact ", i, " holds NaN"));
   lagged_friction_held_ = true;  // the restored contacts may hold some
 }
 

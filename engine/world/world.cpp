@@ -51,6 +51,9 @@ std::vector<EdgeRef> World::edges_since_meshing(EdgeRef e) const {
   if (s_.wave.meshed_blocks == 0) return {e};
   if (e.block < 0 || e.block + 1 >= static_cast<BlockId>(s_.remeshing.old_vertex_start.size()))
     throw Error(msg("no block ", e.block, " before the blocks were meshed"));
+  const std::vector<int>& start = s_.remeshing.old_vertex_start;
+  if (e.edge < 0 || e.edge >= start[e.block + 1] - start[e.block])
+    throw Error(msg("block ", e.block, " had no edge ", e.edge, " before the blocks were meshed"));
   return s_.remeshing.edges({e});
 }
 

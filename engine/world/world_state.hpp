@@ -61,6 +61,7 @@ struct WorldState {
   // Read from a checkpoint: every index and size against the model, before
   // the Stepper builds anything from it. Throws dda::Error naming the damage.
   void check_loaded(const LoadCheck& check) const;
+  void check_loaded_wave_model(const LoadCheck& check) const;
 
   // Half the y extent of the blocks as they are now.
   double measured_half_height() const;

@@ -5,10 +5,15 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <string>
 #include <vector>
 
 #include "../scenes.hpp"
+#include "core/error.hpp"
 #include "loading/load_frequency.hpp"
+#include "world/checkpoint.hpp"
 #include "world/wave_model.hpp"
 
 using namespace dda;
@@ -179,4 +184,31 @@ TEST(WaveModel, ChoicesByHandAreKeptWithAWarningNamingTheFigure) {
   ASSERT_EQ(b.warnings.size(), 1u);
   EXPECT_NE(b.warnings[0].find("under-resolves"), std::string::npos);
   EXPECT_NE(b.warnings[0].find("docs/waves.md"), std::string::npos);
+}
+
+TEST(WaveModel, ADamagedMeshingMapInACheckpointIsRefused) {
+  // Checkpoints are untrusted input (docs/robustness.md): the in-place
+  // meshing's map (the old blocks' first edge slots, 0 4 8 12 16 for four
+  // squares) is checked against the pieces it indexes before anything is
+  // built from it, and an old edge past its block is refused, not read.
+  Bar bar(History(sine_pulse(1000, 0.5)));
+  bar.w.decide_wave_model();
+  bar.w.step();
+  std::string payload = checkpoint_bytes(bar.w).substr(kCheckpointHeaderBytes);
+  std::string map(8, '\0');
+  const std::uint64_t n = 5;
+  std::memcpy(map.data(), &n, 8);
+  for (const std::int32_t v : {0, 4, 8, 12, 16}) map.append(reinterpret_cast<const char*>(&v), 4);
+  const std::size_t at = payload.find(map, payload.find("wave model"));
+  ASSERT_NE(at, std::string::npos);
+  const std::int32_t past = 17;
+  std::memcpy(payload.data() + at + map.size() - 4, &past, 4);
+  try {
+    checkpoint_from_bytes(checkpoint_file(payload), "checkpoint 'x'");
+    ADD_FAILURE() << "a meshing map with 17 slots for 16 edges was accepted";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("meshing map"), std::string::npos) << e.what();
+  }
+  EXPECT_THROW(bar.w.edges_since_meshing(EdgeRef{0, 4}), Error);
+  EXPECT_EQ(bar.w.edges_since_meshing(EdgeRef{0, 3}).size(), 9u);
 }
