@@ -102,7 +102,7 @@ TEST(WaveReferences, PlateBarFreeEndIsConvergedInTheModesKept) {
   // of the modes' end tractions), 1500 Hz, ν = 0.25: 16 modes against 32
   // agree to 1e-4 of the first peak. (The free end differs from rollers,
   // Fraser's exact coefficients, by up to 0.22 % of the peak there: the
-  // end's near field;)
+  // end's near field.)
   const auto load = sine_period(1500);
   std::vector<double> times;
   for (double t = 2.0e-3; t < 2.5e-3; t += 2e-6) times.push_back(t);
