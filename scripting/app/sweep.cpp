@@ -112,9 +112,9 @@ std::vector<std::string> split_values(const std::string& s) {
 
 // Parses the command line; returns 0 or the exit code of a usage error (-1: --help).
 int parse(int argc, char** argv, Plan& p) {
-  static const std::set<std::string> with_value = {"--set",        "--threads",         "--frames",     "--frame-field",
-                                                   "--frame-size", "--frame-range",     "--frame-view", "--vtu",
-                                                   "--movie",      "--checkpoint-every", "--realtime", "--live"};
+  static const std::set<std::string> with_value = {
+      "--set",        "--threads", "--frames", "--frame-field",      "--frame-size", "--frame-range",
+      "--frame-view", "--vtu",     "--movie",  "--checkpoint-every", "--realtime",   "--live"};
   std::set<std::string> names;
   for (int i = 0; i < argc; ++i) {
     const std::string a = argv[i];
