@@ -46,9 +46,7 @@
 
 namespace dda {
 
-// Auto (the controls' default) is resolved before a step: the wave scheme
-// where the wave model is active, else Shi (world/wave_model.hpp).
-enum class Integrator { Shi, Newmark, GeneralizedAlpha, Auto };
+enum class Integrator { Shi, Newmark, GeneralizedAlpha };
 
 // The mass of an element of a meshed block (block/mesh.hpp), the control
 // mesh_mass; first-order blocks always have their consistent mass. An
@@ -67,10 +65,7 @@ enum class Integrator { Shi, Newmark, GeneralizedAlpha, Auto };
 //               leading dispersion error of linear elements in 1-D (the
 //               consistent mass's short waves run faster than c, the lumped
 //               one's slower). docs/meshed_blocks.md has what each does.
-//   Auto (the controls' default), resolved before a step: the wave scheme's
-//               where the wave model is active, else Consistent
-//               (world/wave_model.hpp).
-enum class MeshMass { Consistent, Lumped, Mixed, Auto };
+enum class MeshMass { Consistent, Lumped, Mixed };
 
 // The factor on an element's second moments in its ∫TᵀT (above).
 inline double element_moment_factor(MeshMass m) {
