@@ -10,6 +10,8 @@
 #include <string>
 #include <vector>
 
+#include "../source_dir.hpp"
+
 namespace dda::test {
 
 inline std::filesystem::path source_dir() {
