@@ -203,6 +203,7 @@ int open_module(lua_State* L) {
   set_methods(L, functions, "dda");
   register_render_functions(L);
   register_ground_motion_functions(L);
+  register_exact_functions(L);
   lua_pushliteral(L, DDA_VERSION_TEXT);
   lua_setfield(L, -2, "version");
   const std::string fields = field_list();

@@ -91,6 +91,12 @@ struct MaterialPoint {
 // `mesh_mass` says (MeshMass, block/time_scheme.hpp).
 IntegratedTt block_tt(const Blocks& blocks, std::size_t b, MeshMass mesh_mass);
 
+// Appends a counter-clockwise polygon as a first-order block at rest (its
+// mass from `density`); the mesh arrays grow with it when they exist or
+// `with_mesh_arrays`. Returns its id. (No checks: World's.)
+BlockId append_block(Blocks& blocks, std::span<const Vec2> vertices, int material, double density,
+                     std::span<const int> edge_joints, std::span<const EdgeTag> edge_tags, bool with_mesh_arrays);
+
 // Throws dda::Error, naming `what`, unless every edge exists (and there is one).
 void check_edges(const Blocks& blocks, const std::vector<EdgeRef>& edges, const std::string& what);
 

@@ -66,4 +66,10 @@ double History::integral(double t) const {
   return area_[i - 1] + 0.5 * (v_[i - 1] + value(t)) * (t - t_[i - 1]);
 }
 
+std::vector<std::pair<double, double>> History::points() const {
+  std::vector<std::pair<double, double>> p;
+  for (std::size_t i = 0; i < t_.size(); ++i) p.emplace_back(t_[i], v_[i]);
+  return p;
+}
+
 }  // namespace dda

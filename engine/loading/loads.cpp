@@ -56,6 +56,21 @@ void Loads::set_pressure_history(int id, History pressure) {
   pressure_loads_[id].from_history = true;
 }
 
+std::vector<LoadSignal> Loads::dynamic_signals() const {
+  std::vector<LoadSignal> signals;
+  for (const PointLoadHistory& h : point_load_histories_)
+    signals.push_back({h.magnitude.points(), SignalKind::Force, msg("point load ", h.load)});
+  for (std::size_t i = 0; i < pressure_loads_.size(); ++i)
+    if (pressure_loads_[i].from_history)
+      signals.push_back({pressure_loads_[i].history.points(), SignalKind::Force, msg("pressure load ", i)});
+  return signals;
+}
+
+void Loads::remesh(const Remeshing& r) {
+  for (PointLoad& p : point_loads_) p.block = r.element_at(p.block, p.point);
+  for (PressureLoad& p : pressure_loads_) p.edges = r.edges(p.edges);
+}
+
 void Loads::add_terms(double t_end, const Blocks& blocks, BlockTerms& terms) {
   auto add_force = [&](BlockId b, const Vec2& at, const Vec2& force) {
     terms.f[b] += displacement_matrix(at, blocks.centroid[b]).transpose() * force;

@@ -38,8 +38,10 @@ namespace dda {
 // was a bonded joint when first found. 8: the contact law's part, with its
 // per-contact history (the lagged friction's memory, out of the contacts).
 // 9: the automatic solver choice's trial (its work against PCG's, and a
-// trial given up in the step).
-inline constexpr std::uint32_t kCheckpointFormat = 9;
+// trial given up in the step). 10: the wave model (its decision, the
+// in-place meshing's map, the joints' lengths, the boundaries' edges and
+// the edge targets).
+inline constexpr std::uint32_t kCheckpointFormat = 10;
 
 // The World's state and `extra` (bytes its owner keeps beside it: the Lua
 // layer's loads and monitors), as a checkpoint file's bytes.

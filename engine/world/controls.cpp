@@ -22,15 +22,17 @@ constexpr ControlRange kZeroOffOrPositive{0, kInf, false, false, "must be zero (
 constexpr ControlRange kZeroAutomaticOrPositive{0, kInf, false, false, "must be zero (automatic) or positive"};
 constexpr ControlRange kOffOrUnitInterval{-1, 1, false, false, "must be -1 (off) or lie in [0, 1]", true};
 constexpr ControlRange kThreads{0, kMaxThreads, false, false, "must be zero (every core) or 1 to 4096"};
+constexpr ControlRange kAutomaticZeroOrPositive{
+    -1, kInf, false, false, "must be -1 (from the loads), 0 (first-order blocks) or positive", true};
 
-constexpr const char* kPlaneNames[] = {"stress", "strain"};                            // PlaneMode order
-constexpr const char* kIntegratorNames[] = {"shi", "newmark", "generalized_alpha"};    // Integrator order
-constexpr const char* kMeshMassNames[] = {"consistent", "lumped", "mixed"};            // MeshMass order
-constexpr const char* kContactLawNames[] = {"holding", "shi"};                         // ContactLaw order
-constexpr const char* kPreconditionerNames[] = {"auto", "block_jacobi", "multigrid"};  // Preconditioning order
-constexpr const char* kSolverNames[] = {"auto", "pcg", "cholmod"};                     // SolverKind order
-constexpr const char* kFillOrderingNames[] = {"metis", "amd"};                         // FillOrdering order
-constexpr const char* kMeshPreconditionerNames[] = {"block_factor", "node_jacobi"};    // MeshPreconditioning order
+constexpr const char* kPlaneNames[] = {"stress", "strain"};                                  // PlaneMode order
+constexpr const char* kIntegratorNames[] = {"shi", "newmark", "generalized_alpha", "auto"};  // Integrator order
+constexpr const char* kMeshMassNames[] = {"consistent", "lumped", "mixed", "auto"};          // MeshMass order
+constexpr const char* kContactLawNames[] = {"holding", "shi"};                               // ContactLaw order
+constexpr const char* kPreconditionerNames[] = {"auto", "block_jacobi", "multigrid"};        // Preconditioning order
+constexpr const char* kSolverNames[] = {"auto", "pcg", "cholmod"};                           // SolverKind order
+constexpr const char* kFillOrderingNames[] = {"metis", "amd"};                               // FillOrdering order
+constexpr const char* kMeshPreconditionerNames[] = {"block_factor", "node_jacobi"};  // MeshPreconditioning order
 
 constexpr ControlSpec number(const char* name, double& (*field)(Controls&), ControlRange range, const char* doc,
                              const char* default_text = nullptr) {
@@ -75,7 +77,9 @@ const ControlSpec kControls[] = {
     choice(
         "integrator", kIntegratorNames, [](const Controls& c) { return static_cast<int>(c.integrator); },
         [](Controls& c, int i) { c.integrator = static_cast<Integrator>(i); },
-        "time integration (`docs/time_integration.md`): `\"shi\"`, the paper's scheme (Newmark β = ½, γ = 1: "
+        "time integration (`docs/time_integration.md`): `\"auto\"`, Shi's scheme, or, where the dynamic loads "
+        "had the blocks meshed (`docs/waves.md`), Newmark's average acceleration; `\"shi\"`, the paper's scheme "
+        "(Newmark β = ½, γ = 1: "
         "first order, it damps a wave of angular frequency ω by about exp(−ω²Δt·t/4)); `\"newmark\"`, "
         "average acceleration (β = ¼, γ = ½: second order, no numerical damping); "
         "`\"generalized_alpha\"` (Chung–Hulbert: second order, damping only near the step's own "
@@ -150,19 +154,28 @@ const ControlSpec kControls[] = {
         " up to Shi's 2.5·g2·(half height)",
         "0 (automatic)"),
     number(
-        "mesh_size", [](Controls& c) -> double& { return c.mesh_size; }, kZeroOffOrPositive,
+        "mesh_size", [](Controls& c) -> double& { return c.mesh_size; }, kAutomaticZeroOrPositive,
         "m: blocks added from now on whose rock material has no `mesh_size` of its own are meshed into "
         "constant-strain triangles of about this size, with continuous displacement inside and contacts"
         " on the outline (`docs/meshed_blocks.md`); convex blocks on a structured grid, concave ones by CGAL. 0: "
-        "first-order blocks",
-        "0 (off)"),
+        "first-order blocks. -1: from the dynamic loads: before the first step, where a block is larger than the "
+        "element that resolves the loads' shortest shear wave (12 elements per wavelength at the frequency "
+        "below which 99 % of their energy lies), every block is meshed at that size (`docs/waves.md`)",
+        "-1 (from the loads)"),
     choice(
         "mesh_mass", kMeshMassNames, [](const Controls& c) { return static_cast<int>(c.mesh_mass); },
         [](Controls& c, int i) { c.mesh_mass = static_cast<MeshMass>(i); },
-        "the mass of meshed blocks' elements (`docs/meshed_blocks.md`): `\"consistent\"` (ρ∫TᵀT, exact: "
+        "the mass of meshed blocks' elements (`docs/meshed_blocks.md`): `\"auto\"`, lumped under dynamic loads "
+        "(`docs/waves.md`), consistent otherwise; `\"consistent\"` (ρ∫TᵀT, exact: "
         "short waves run faster than c, a precursor ahead of a steep front), `\"lumped\"` (a third of an "
         "element's mass at each corner: short waves lag) or `\"mixed\"` (their mean). Translation and the "
         "mass are exact under each; first-order blocks keep their consistent mass"),
+    number(
+        "max_frequency", [](Controls& c) -> double& { return c.max_frequency; }, kZeroAutomaticOrPositive,
+        "Hz: the highest frequency of the dynamic loads, as the user states it; 0: found from the loads' "
+        "histories and functions (the frequency below which 99 % of each one's energy lies; `docs/waves.md`). "
+        "The element size of `mesh_size = -1` follows from it",
+        "0 (from the loads)"),
     number(
         "fixed_point_factor", [](Controls& c) -> double& { return c.fixed_point_factor; }, kPositive,
         "fixed-point spring = factor × g0"),

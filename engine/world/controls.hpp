@@ -37,14 +37,14 @@ static_assert(kMaxThreads == 4096, "the threads control's rule says 4096");
 
 struct Controls {
   PlaneMode plane = PlaneMode::Stress;
-  double g0 = 0;                            // normal contact spring (N/m per unit thickness); 0 → 50 × largest E
-  double g1 = 0;                            // upper step time (s); 0 → the default rule (world/time_step_rule.hpp)
-  double g2 = 0.005;                        // largest step displacement / half the model height
-  double gg = 1;                            // dynamic parameter: share of velocity carried into the next step
-  Integrator integrator = Integrator::Shi;  // time integration (block/time_scheme.hpp)
-  double rho_inf = 0.9;                     // generalized-α: spectral radius at high frequency
-  double shear_ratio = 0.4;                 // shear spring = shear_ratio × g0 (Shi's 2/5)
-  int open_close_limit = 6;                 // open-close iterations before Δt is cut and the step redone
+  double g0 = 0;                             // normal contact spring (N/m per unit thickness); 0 → 50 × largest E
+  double g1 = 0;                             // upper step time (s); 0 → the default rule (world/time_step_rule.hpp)
+  double g2 = 0.005;                         // largest step displacement / half the model height
+  double gg = 1;                             // dynamic parameter: share of velocity carried into the next step
+  Integrator integrator = Integrator::Auto;  // time integration (block/time_scheme.hpp; auto: world/wave_model.hpp)
+  double rho_inf = 0.9;                      // generalized-α: spectral radius at high frequency
+  double shear_ratio = 0.4;                  // shear spring = shear_ratio × g0 (Shi's 2/5)
+  int open_close_limit = 6;                  // open-close iterations before Δt is cut and the step redone
   // Open-close hysteresis of gap decisions and intact joints, as a fraction
   // of half the model height: a closed contact opens once separated by more
   // than this, an open one closes once penetrated by more; an intact joint
@@ -77,10 +77,14 @@ struct Controls {
   double restitution = -1;
   double contact_range = 0;  // m; 0 → automatic (contact/contact_detection.hpp)
   // Element size (m) of the meshes of blocks added from now on whose rock
-  // material gives none; 0: first-order blocks (block/mesh.hpp).
-  double mesh_size = 0;
+  // material gives none (block/mesh.hpp); 0: first-order blocks; −1: from
+  // the dynamic loads (world/wave_model.hpp).
+  double mesh_size = -1;
   // The mass of the meshes' elements (block/time_scheme.hpp).
-  MeshMass mesh_mass = MeshMass::Consistent;
+  MeshMass mesh_mass = MeshMass::Auto;
+  // The highest frequency (Hz) of the dynamic loads, when the user states
+  // it; 0: found from the loads (loading/load_frequency.hpp).
+  double max_frequency = 0;
 
   double fixed_point_factor = 100;  // fixed-point spring = factor × g0
   Vec2 gravity = Vec2::Zero();      // m/s²

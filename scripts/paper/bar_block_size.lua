@@ -60,7 +60,7 @@ local ex_comp, ex_tens = wave.incident(ex, "comp"), wave.incident(ex, "tens")
 
 local function run(size)
   local m = dda.model{ plane = "stress", g0 = g0 * E, g1 = dt, g2 = 0.005, gg = 1, integrator = integrator,
-                       contact_law = "shi", mesh_mass = mesh_mass }
+                       contact_law = "shi", mesh_mass = mesh_mass, mesh_size = 0 }
   local rock = m:rock{ density = bars.rock.density, E = bars.rock.E, nu = nu, mesh_size = mesh }
   local joint = m:joint{ friction = 40, cohesion = 8e6, tension = 8e6,
                         kn = (not penalty) and 2 * g0 * E / bars.spacing or nil }

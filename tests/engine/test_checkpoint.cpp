@@ -53,6 +53,7 @@ World blast() {
   w.controls().gravity = Vec2(0, -9.81);
   w.controls().g0 = 20 * 30e9;
   w.controls().g1 = 1e-5;
+  w.controls().mesh_size = 0;  // first-order blocks under the pulse (docs/waves.md)
   return w;
 }
 
