@@ -70,16 +70,19 @@ double energy_density(const Samples& s, double f) {
   return std::norm(sum);
 }
 
-// The frequency below which `share` of the energy lies (trapezoids of df on
-// the energy density), or f_end.
-double energy_quantile(const Samples& s, double df, double f_end, double share) {
-  double cumulative = 0, previous = energy_density(s, 0);
-  for (double f = df; f <= f_end; f += df) {
-    const double density = energy_density(s, f);
-    const double step = 0.5 * df * (previous + density);
-    if (cumulative + step >= share) return f - df + df * (share - cumulative) / step;
-    cumulative += step;
+// The frequency below which `share` of the energy lies (trapezoids on the
+// energy density, of width step(f) from f), or f_end.
+template <class Step>
+double energy_quantile(const Samples& s, Step step, double f_end, double share) {
+  double cumulative = 0, f = 0, previous = energy_density(s, 0);
+  while (f < f_end) {
+    const double df = std::min(step(f), f_end - f);
+    const double density = energy_density(s, f + df);
+    const double area = 0.5 * df * (previous + density);
+    if (cumulative + area >= share) return f + df * (share - cumulative) / area;
+    cumulative += area;
     previous = density;
+    f += df;
   }
   return f_end;
 }
@@ -111,12 +114,19 @@ double signal_frequency(const LoadSignal& signal) {
   const double high =
       std::max_element(s.begin(), s.end(), [](auto& x, auto& y) { return x.second < y.second; })->second;
   if (!(total > 0) || high - low <= 1e-12 * std::max(std::abs(high), std::abs(low))) return 0;
-  // Its spectrum varies over 1/duration; up to where the samples can say
-  // anything (half their finest rate). A coarse pass (at most 4000 steps)
-  // finds the frequency roughly, a fine one (500 steps below it) exactly.
+  // Its spectrum varies over 1/duration, up to where the samples can say
+  // anything (half their finest rate, which one short interval can make
+  // very high). A coarse pass finds the frequency roughly: steps of an
+  // eighth of 1/duration, so that no lobe of the spectrum is stepped over
+  // where the energy lies, growing to 1 % of the frequency far above it (a
+  // few thousand steps up to any rate). A fine one (500 steps below it)
+  // finds it exactly.
   const double duration = s.back().first - s.front().first, f_end = 0.5 / spacing;
-  const double coarse = energy_quantile(s, std::max(1 / (8 * duration), f_end / 4000), f_end, kEnergyShare * total);
-  return energy_quantile(s, coarse / 500, f_end, kEnergyShare * total);
+  const double share = kEnergyShare * total;
+  const double coarse = energy_quantile(
+      s, [&](double f) { return std::max(1 / (8 * duration), 0.01 * f); }, f_end, share);
+  return energy_quantile(
+      s, [&](double) { return coarse / 500; }, f_end, share);
 }
 
 LoadFrequency dynamic_load_frequency(const WorldState& w, std::span<const LoadSignal> script_signals) {

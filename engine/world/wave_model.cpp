@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "block/mesh.hpp"
 #include "core/error.hpp"
 #include "world/world_state.hpp"
 
@@ -31,9 +32,8 @@ bool automatic(const WorldState& w, BlockId b) {
 
 std::string figure(double v) { return msg(std::round(v * 1000) / 1000); }
 
-}  // namespace
-
-std::vector<double> meshes_for_waves(const WorldState& w, double frequency) {
+// Per block, the mesh size that resolves `frequency` (0: none), budget aside.
+std::vector<double> resolving_meshes(const WorldState& w, double frequency) {
   const std::size_t n = w.blocks.count();
   std::vector<double> size(n, 0.0);
   if (!(frequency > 0)) return size;
@@ -48,6 +48,22 @@ std::vector<double> meshes_for_waves(const WorldState& w, double frequency) {
   return size;
 }
 
+double mesh_elements(const WorldState& w, const std::vector<double>& size) {
+  double elements = 0;
+  for (std::size_t b = 0; b < size.size(); ++b)
+    if (size[b] > 0)
+      elements += std::max(1.0, estimated_mesh_elements(w.blocks.outline(static_cast<BlockId>(b)), size[b]));
+  return elements;
+}
+
+}  // namespace
+
+std::vector<double> meshes_for_waves(const WorldState& w, double frequency) {
+  std::vector<double> size = resolving_meshes(w, frequency);
+  if (mesh_elements(w, size) > kWaveMeshElementBudget) size.assign(size.size(), 0.0);
+  return size;
+}
+
 WaveModel choose_wave_model(const WorldState& w, const LoadFrequency& load) {
   WaveModel m;
   m.decided = true;
@@ -59,6 +75,9 @@ WaveModel choose_wave_model(const WorldState& w, const LoadFrequency& load) {
     return m;
   }
   const double f = load.frequency;
+  const std::vector<double> resolving = resolving_meshes(w, f);
+  const double elements = mesh_elements(w, resolving);
+  const bool over_budget = elements > kWaveMeshElementBudget;
   const std::vector<double> size = meshes_for_waves(w, f);
   double smallest = 0, largest_block = 0;
   bool meshed_by_hand = false;
@@ -83,6 +102,9 @@ WaveModel choose_wave_model(const WorldState& w, const LoadFrequency& load) {
     m.notes.push_back(msg(head, ": the shortest shear wave resolved by ", kElementsPerWavelength,
                           " elements needs elements of ", figure(smallest), " m; ", m.meshed_blocks,
                           " first-order blocks meshed (docs/waves.md)"));
+  else if (over_budget)
+    m.notes.push_back(msg(head, ": first-order blocks kept (a mesh that resolves it would take ",
+                          std::llround(elements), " elements)"));
   else if (meshed_by_hand)
     m.notes.push_back(msg(head, ": the blocks meshed as the script says"));
   else
@@ -92,6 +114,20 @@ WaveModel choose_wave_model(const WorldState& w, const LoadFrequency& load) {
     m.notes.push_back(
         "the elements' mass lumped at their corners and Newmark's average acceleration: no "
         "wrong-sign lobe ahead of a pulse (docs/waves.md)");
+
+  if (over_budget) {
+    double h = 0;  // the finest resolving size
+    for (const double r : resolving)
+      if (r > 0) h = h > 0 ? std::min(h, r) : r;
+    m.warnings.push_back(
+        msg("the dynamic load of ", figure(f), " Hz needs elements of ", figure(h), " m, about ",
+            std::llround(elements), " elements here, more than the ", kWaveMeshElementBudget,
+            " the engine makes by itself: the blocks stay first-order, and a first-order block sends a wrong-sign lobe "
+            "of 2-16 % of the amplitude ahead of each pulse (docs/waves.md, \"The precursor\"); mesh_size = ",
+            figure(h),
+            " meshes them anyway, max_frequency = F (Hz) sizes the elements for the highest frequency "
+            "of interest"));
+  }
 
   // Choices by hand that carry a precursor or under-resolve the load.
   if (c.mesh_size == 0 && largest_block > h_min * (1 + 1e-9))

@@ -45,6 +45,14 @@ WaveScheme wave_scheme();
 // 1000 Hz).
 inline constexpr double kElementsPerWavelength = 12;
 
+// The most elements the wave model makes by itself. A mesh for the load
+// larger than this costs far more than a user who set nothing expects (the
+// README's job, 8000 elements, takes half a minute on 2 cores; a slope of
+// 105 blocks hit by a 2 ms pulse would take about 40 000 elements and hours):
+// the blocks then stay first-order, with a warning naming the mesh and the
+// controls that make it (mesh_size, max_frequency).
+inline constexpr double kWaveMeshElementBudget = 20000;
+
 // The element size (m) that resolves frequency f (Hz) in `rock`.
 double wave_element_size(const RockMaterial& rock, double frequency);
 
@@ -68,7 +76,8 @@ struct WaveModel {
 // The decision for the model as it stands before its first step (the blocks
 // to mesh: meshes_for_waves).
 WaveModel choose_wave_model(const WorldState& w, const LoadFrequency& load);
-// Per block, the size of the mesh the wave model gives it (0: none).
+// Per block, the size of the mesh the wave model gives it (0: none; none
+// at all where the mesh would exceed kWaveMeshElementBudget).
 std::vector<double> meshes_for_waves(const WorldState& w, double frequency);
 
 // The integrator and the elements' mass a step uses: the controls', or,

@@ -742,6 +742,10 @@ JointedMeshedRun jointed_meshed_bar(MeshPreconditioning preconditioning, int thr
   c.g2 = 0.01;
   c.threads = threads;
   c.solver.mesh_preconditioner = preconditioning;
+  c.mesh_size = 0;  // the last block stays first-order: a mix of both kinds
+  // The consistent mass, where the factors halve the iterations; under the
+  // wave model's lumped mass they save 43 % (885 against 1541).
+  c.mesh_mass = MeshMass::Consistent;
   World w(c);
   RockMaterial meshed{2000, 50e9, 0.25};
   meshed.mesh_size = 0.125;

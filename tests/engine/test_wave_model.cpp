@@ -79,6 +79,11 @@ TEST(WaveModel, ASinePulsesHighestFrequencyHoldsNinetyNinePercentOfItsEnergy) {
     const LoadSignal s{sine_pulse(1000, periods, 5e6, 2000), SignalKind::Force, "sine"};
     EXPECT_NEAR(signal_frequency(s) / 1000, expected, 0.01) << periods;
   }
+  // One short interval (a sample 1 ns after the pulse's end) raises the
+  // rate the samples could carry to 500 MHz but not the pulse's frequency.
+  std::vector<std::pair<double, double>> closed = sine_pulse(1000, 1.0, 5e6, 100);
+  closed.emplace_back(closed.back().first + 1e-9, 0.0);
+  EXPECT_NEAR(signal_frequency({closed, SignalKind::Force, "closed sine"}) / 1000, 2.20, 0.01);
   // A constant, and a load switched on and held, are static.
   EXPECT_EQ(signal_frequency({{{0, 3}, {1, 3}}, SignalKind::Force, "constant"}), 0);
   EXPECT_EQ(signal_frequency({{{0, 0}, {1e-9, 3}, {1, 3}}, SignalKind::Force, "step"}), 0);
@@ -150,6 +155,23 @@ TEST(WaveModel, BlocksThatResolveTheLoadStayFirstOrder) {
   EXPECT_EQ(bar.w.block_count(), 4u);
   EXPECT_EQ(bar.w.integrator_in_use(), Integrator::Shi);
   EXPECT_TRUE(wave.warnings.empty());
+}
+
+TEST(WaveModel, AMeshBeyondTheBudgetKeepsFirstOrderBlocksAndSaysSo) {
+  // Half a sine at 20 kHz needs elements of C_S/(12·47.3 kHz) = 5.6 mm:
+  // about 4 × 2·(1/0.0056)² = 260 000 elements, over the budget of 20 000.
+  // The blocks stay first-order under Shi's scheme, and a warning names the
+  // size, the count and the controls that mesh them.
+  Bar bar(History(sine_pulse(20000, 0.5)));
+  const WaveModel& wave = bar.w.decide_wave_model();
+  EXPECT_FALSE(wave.active);
+  EXPECT_EQ(wave.meshed_blocks, 0);
+  EXPECT_EQ(bar.w.block_count(), 4u);
+  EXPECT_EQ(bar.w.integrator_in_use(), Integrator::Shi);
+  ASSERT_EQ(wave.warnings.size(), 1u);
+  EXPECT_NE(wave.warnings[0].find("needs elements of 0.006 m"), std::string::npos) << wave.warnings[0];
+  EXPECT_NE(wave.warnings[0].find("more than the 20000"), std::string::npos) << wave.warnings[0];
+  EXPECT_NE(wave.warnings[0].find("mesh_size = 0.006"), std::string::npos) << wave.warnings[0];
 }
 
 TEST(WaveModel, NoDynamicLoadKeepsFirstOrderBlocks) {
