@@ -425,35 +425,44 @@ const WaveModel& ScriptModel::decide_wave_model(lua_State* L, double window) {
   if (world_->wave_model().decided) return world_->wave_model();
   // The functions sampled as the steps will apply them, every Δt (at most
   // 65,536 samples), over the run and at least 1000 steps: a short first run
-  // must not cut a pulse short.
+  // must not cut a pulse short. Not where the user states the frequency.
   const double dt = world_->controls().g1 > 0 ? world_->controls().g1 : world_->default_time_step().dt;
   window = std::max(window, 1000 * dt);
+  if (world_->controls().max_frequency > 0) window = 0;
   const int count = static_cast<int>(std::min(65536.0, std::ceil(window / dt)));
   std::vector<LoadSignal> signals;
-  auto sample = [&](SignalKind kind, std::string what, auto value_at) {
-    LoadSignal s{{}, kind, std::move(what)};
+  // Each input once per sample time, its components as signals of their own.
+  // A function that fails at a later time is read up to there: its error
+  // belongs to the step that reaches that time, not to this look ahead.
+  auto sample = [&](SignalKind kind, const std::string& what, int components, auto values_at) {
+    std::vector<LoadSignal> s(components, LoadSignal{{}, kind, what});
     for (int i = 0; i <= count; ++i) {
       const double t = window * i / count;
-      s.samples.emplace_back(t, value_at(t));
+      Vec2 v;
+      try {
+        v = values_at(t);
+      } catch (const std::exception&) {
+        break;
+      }
+      for (int c = 0; c < components; ++c) s[c].samples.emplace_back(t, v[c]);
     }
-    signals.push_back(std::move(s));
+    for (LoadSignal& one : s) signals.push_back(std::move(one));
   };
   busy_ = true;
   try {
     if (window > 0) {
       for (std::size_t i = 0; i < pressures_.size(); ++i)
         if (pressures_[i].pressure.is_function())
-          sample(SignalKind::Force, msg("the function of pressure ", i + 1),
-                 [&](double t) { return pressures_[i].pressure.at(L, t); });
+          sample(SignalKind::Force, msg("the function of pressure ", i + 1), 1,
+                 [&](double t) { return Vec2(pressures_[i].pressure.at(L, t), 0); });
       for (std::size_t i = 0; i < loads_.size(); ++i)
         if (!loads_[i].force.engine_driven() && !loads_[i].force.constant())
-          for (int c = 0; c < 2; ++c)
-            sample(SignalKind::Force, msg("the function of point load ", i + 1),
-                   [&](double t) { return loads_[i].force.at(L, t)[c]; });
+          sample(SignalKind::Force, msg("the function of point load ", i + 1), 2,
+                 [&](double t) { return loads_[i].force.at(L, t); });
       for (std::size_t i = 0; i < targets_.size(); ++i)
         if (targets_[i].mode == ScriptTarget::Mode::Displacement && targets_[i].input.is_function())
-          sample(SignalKind::Displacement, msg("the function of target ", i + 1),
-                 [&](double t) { return targets_[i].input.at(L, t); });
+          sample(SignalKind::Displacement, msg("the function of target ", i + 1), 1,
+                 [&](double t) { return Vec2(targets_[i].input.at(L, t), 0); });
     }
   } catch (...) {
     busy_ = false;

@@ -48,7 +48,7 @@ inline constexpr double kElementsPerWavelength = 12;
 // The most elements the wave model makes by itself. A mesh for the load
 // larger than this costs far more than a user who set nothing expects (the
 // README's job, 8000 elements, takes half a minute on 2 cores; a slope of
-// 105 blocks hit by a 2 ms pulse would take about 40 000 elements and hours):
+// 105 blocks hit by a 2 ms pulse would take about 85 000 elements and hours):
 // the blocks then stay first-order, with a warning naming the mesh and the
 // controls that make it (mesh_size, max_frequency).
 inline constexpr double kWaveMeshElementBudget = 20000;
