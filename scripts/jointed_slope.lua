@@ -6,8 +6,8 @@
 --          cohesion or tension; the bottom edges fixed; gravity switched on at
 --          once. The bedding dips out of the face at 25 deg, so wedges on the
 --          face slide and tip past the corners of the blocks below: contacts
---          must follow vertices past the ends of edges (docs/contacts.md,
---          contact transfer).
+--          must follow vertices past the ends of edges
+--          (docs/contact_transfer.md).
 -- Run:     build/dda run scripts/jointed_slope.lua [--set t_end=5] [--set dt=1e-3] [--set law=shi]
 -- Writes:  prints, every 0.1 s, the largest block displacement, how many
 --          blocks moved more than 0.1 m, the deepest closed-contact penetration

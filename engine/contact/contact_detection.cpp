@@ -54,7 +54,7 @@ bool ContactDetection::detect(const Blocks& blocks, double range, std::vector<Co
   };
   // A vertex gone round the corner of its contact's edge, or slid past its
   // end, is searched again: it belongs to the next edge there or to a
-  // vertex-vertex contact (contact transfer, docs/contacts.md). So are
+  // vertex-vertex contact (docs/contact_transfer.md). So are
   // aligned edges slid past each other's corner: their contacts are missing
   // or too weak (narrow_phase.hpp). The watch tests only what can have
   // changed since its last test (transfer_watch.hpp).

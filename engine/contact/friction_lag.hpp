@@ -1,6 +1,6 @@
 #pragma once
 // Friction that lags the normal force (the control friction_lag, t_r in
-// seconds; 0: none; docs/contacts.md): the normal force N_f a contact's
+// seconds; 0: none; docs/friction_flutter.md): the normal force N_f a contact's
 // friction strength acts with follows N as the simplified Prakash–Clifton
 // law over the interface's own life. Both penalty laws apply it
 // (penalty_contacts.hpp), each contact's memory (FrictionMemory) their

@@ -28,7 +28,7 @@
 //     again, and the facing edges then overlap and make their contacts.
 // Neither kind pairs a vertex with an edge it has gone round the corner of
 // (passed_corner): such a vertex belongs to the next edge at that corner
-// (docs/contacts.md, contact transfer).
+// (docs/contact_transfer.md).
 #include <span>
 #include <utility>
 #include <vector>

@@ -10,7 +10,7 @@
 // moved (the sum of its largest vertex displacement at each check). A test
 // runs again only once its blocks' bounds have used up its slack: a skipped
 // test would have answered false, so the answers, and the steps, are those
-// of testing everything every step, bit for bit (docs/contacts.md).
+// of testing everything every step, bit for bit (docs/contact_transfer.md).
 #include <algorithm>
 #include <span>
 #include <vector>

@@ -1,6 +1,6 @@
 // Contacts that follow large motions (issue 22, item 1): a vertex that slides
 // past the end of an edge transfers to the next edge at that corner or to a
-// vertex-vertex contact (docs/contacts.md, "Contact transfer"), so blocks
+// vertex-vertex contact (docs/contact_transfer.md), so blocks
 // slide down steps, topple and fall onto others without a false penetration
 // stopping the run; and a step that cannot be completed names its deepest
 // contact and a cure that is true. Rigid-block references (closed forms);
@@ -216,7 +216,7 @@ TEST(ContactTransfer, BlockSlidesDownFrictionlessStepsKeepingItsEnergy) {
 // without stalling and without sinking into a tread beyond the g2 bound.
 //
 // And under "holding" with friction_lag = 3 ms, the block landing on each
-// tread a new interface (docs/contacts.md; measured 1.81280 m/s²). (Under
+// tread a new interface (docs/friction_flutter.md; measured 1.81280 m/s²). (Under
 // "shi" with the lag the block never slides: Shi's model-wide friction band
 // holds it once the lag averages away the odd-even swing of its N.)
 TEST(ContactTransfer, BlockSlidesDownStepsAtTheFrictionRateOnEachFace) {
@@ -400,7 +400,7 @@ TEST(ContactTransfer, StallMessageNamesTheContactAndATrueCure) {
   EXPECT_NO_THROW(for (int i = 0; i < 50; ++i) stiff.step()) << message;
 }
 
-// Aligned corners that slide apart (docs/contacts.md): the scene
+// Aligned corners that slide apart (docs/contact_transfer.md): the scene
 // test::block_sliding_past_aligned_corner. Block A on a fixed base, its
 // bottom-right corner at a joint where the top of a free block B begins (its
 // bottom edge and B's top edge meet end to end: no contact between them),

@@ -360,7 +360,7 @@ TEST(Friction, CutMidSlideFollowsTheSmallerStepsRun) {
 // Sliding at small steps (issue 22, item 3). Undamped, friction couples the
 // elastic block's two lowest strain modes (about 4,300 and 5,500 rad/s on
 // their springs) into one that grows (ω ≈ 4,700 rad/s, growth 150 s⁻¹ at
-// φ = 20°, 440 s⁻¹ at 25°: the linearised block, docs/contacts.md); Shi's
+// φ = 20°, 440 s⁻¹ at 25°: the linearised block, docs/friction_flutter.md); Shi's
 // numerical damping, ξ ≈ ωΔt/4, outweighs that only for Δt ≳ 1e-4 s, and
 // Newmark's integrator does not damp at all. The rock's material damping,
 // strain_damping = β = 5e-5 s (ξ = βω/2: 12 % at 4,700 rad/s), holds it
@@ -386,7 +386,7 @@ void expect_damped_slides_at_the_closed_form_rate(double dt, double t_end) {
 // (30° on 20° from a static start: −17 % at 1e-3 s, +1.4 % at 1e-4 s);
 // measured with damping below 5e-6. (At 1e-2 s under Newmark's, gravity on
 // at once rings the contact springs, which the strain damping does not
-// reach: docs/contacts.md, Known limits.)
+// reach: docs/friction_flutter.md.)
 TEST(Friction, StrainDampingSlidesAtTheClosedFormRateAtSmallSteps) {
   for (const double dt : {1e-3, 1e-4, 1e-5}) expect_damped_slides_at_the_closed_form_rate(dt, 0.3);
 }
@@ -503,7 +503,7 @@ TEST(Friction, BlockLandingFromAMicrometreSlidesFromItsFirstStep) {
 // bounces (the penalty springs' restitution) and the block rocks on a
 // corner; dropped from 0.98, 0.99, 1.01 or 1.02 m it ends 0.06 to 0.77 m
 // back under either law, and harder landings are thrown back too
-// (docs/contacts.md, Known limits, "A hard landing on a rough face"). With
+// (docs/landings.md, Known limits, "A hard landing on a rough face"). With
 // the landing law (restitution = 0) every height ends where it lands:
 // tests/engine/test_landing.cpp.
 TEST(Friction, BlockLandingOnAFlatFaceFromOneMetreEndsWhereItLands) {
@@ -537,8 +537,8 @@ TEST(Friction, BlockLandingOnAFlatFaceFromOneMetreEndsWhereItLands) {
 // on 15° / φ = 20° and the lower block of the stack at rest, bound 1e-10 m of
 // slip between T/3 and T. Strain damping β = 5e-5 s for φ ≤ 25°, 1.5e-4 s at
 // 45° (the friction-induced flutter's threshold on the linearised block,
-// docs/contacts.md). Undamped, every second-order scheme chatters at
-// Δt ≤ 1e-4 s whatever ρ∞ (the grid in docs/contacts.md, "Under the
+// docs/friction_flutter.md). Undamped, every second-order scheme chatters at
+// Δt ≤ 1e-4 s whatever ρ∞ (the grid in docs/friction_flutter.md, "Under the
 // second-order integrators"). With gravity switched on at once ρ∞ = 0: at
 // ρ∞ = 0.5 the contact springs' ringing that the start sets off at
 // Δt = 1e-2 s takes 25.2° / 25° to 9.4e-4 of the closed form and slips the
@@ -624,7 +624,7 @@ TEST(FrictionLong, GeneralizedAlphaWithStrainDampingHoldsAndSlidesAtEveryStepSiz
       expect_generalized_alpha_holds_and_slides(dt, {rho_inf, true});
 }
 
-// Friction that lags the normal force (friction_lag = t_r; docs/contacts.md,
+// Friction that lags the normal force (friction_lag = t_r; docs/friction_flutter.md,
 // "Sliding at small steps"): the friction strength of a contact follows its
 // normal force as dN_f/dt = (N − N_f)/t_r, so the fast swings of N that
 // couple the sliding block's strain modes into a growing one (the chatter of
@@ -669,7 +669,7 @@ TEST(Friction, LaggedFrictionSlidesAtTheClosedFormRateAtEveryStepSize) {
 // the same bound, measured within 4.4e-4 (60° on 45° at 1e-3 s; the others
 // within 5e-7). With gravity switched on at once the contact springs'
 // ringing, which Newmark's rule does not damp, spoils the slide at every Δt
-// (3.4 % off at 1e-2 s; contacts opening from 1e-3 s down: docs/contacts.md),
+// (3.4 % off at 1e-2 s; contacts opening from 1e-3 s down: docs/friction_flutter.md),
 // not the friction's to cure.
 TEST(Friction, LaggedFrictionSlidesAtTheClosedFormRateUnderNewmarkFromAStaticStart) {
   for (const double dt : {1e-2, 1e-3, 1e-4, 1e-5})
@@ -681,7 +681,7 @@ TEST(Friction, LaggedFrictionSlidesAtTheClosedFormRateUnderNewmarkFromAStaticSta
 // step's offset of the sampling times, and the start). With gravity switched
 // on at once 60° on 45° slides closed at 1e-6 s since a landing is a new
 // interface (with the strength built from the first N over t_r, +100 %, a
-// corner opening), but not at 3e-6 s (+82 %, opening: docs/contacts.md,
+// corner opening), but not at 3e-6 s (+82 %, opening: docs/friction_flutter.md,
 // Known limits).
 TEST(FrictionLong, LaggedFrictionSlidesAtTheClosedFormRateAtOneMicrosecond) {
   expect_lagged_slides_at_the_closed_form_rate(1e-6, true, kSlidingAngles);
@@ -831,7 +831,7 @@ TEST(Friction, BlockSetSlidingOnAFlatFaceDeceleratesAtTheClosedFormRate) {
 
 // The lagged strength of a new contact is the mean of the N it has carried
 // since it closed, each instant weighted by exp(−(its age)/t_r) and the
-// weights normalised over the contact's life (docs/contacts.md, "A landing is
+// weights normalised over the contact's life (docs/friction_flutter.md, "A contact that closes is
 // a new interface"). Reference: that mean in closed form for N piecewise
 // constant over steps of different Δt,
 //   N_f = Σ_k N_k·(e^(−(T − t_k)/t_r) − e^(−(T − t_{k−1})/t_r)) / (1 − e^(−T/t_r)),
