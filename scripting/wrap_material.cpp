@@ -211,7 +211,7 @@ void register_materials(lua_State* L) {
       {"rock", guarded<m_rock>, "m:rock{...} → RockMaterial", kRockOptions},
       {"joint", guarded<m_joint>,
        "m:joint{...} → JointMaterial\nA joint material: Mohr-Coulomb strength and, when given, the joint's own "
-       "stiffness (docs/contacts.md).",
+       "stiffness (docs/time_integration.md, \"Joints with their own stiffness\").",
        kJointOptions},
       {"default_joint", guarded<m_default_joint>,
        "m:default_joint() → JointMaterial\nJoint material 0, which edges get when none is given (φ = 30°, "
