@@ -314,7 +314,7 @@ void register_geometry(lua_State* L) {
        kJointSetOptions},
       {"joint_line", guarded<m_joint_line>, "m:joint_line{...}\nOne joint along a segment.", kJointLineOptions},
       {"generate", guarded<m_generate>,
-       "m:generate{...} → BlockSet, info\nCuts the domain into blocks (docs/scripting.md, \"Block generation\"); "
+       "m:generate{...} → BlockSet, info\nCuts the domain into blocks (docs/formulation.md, \"Block generation\"); "
        "`info` says what the cut did.",
        kGenerateOptions, kGenerateReturns},
       {}};
