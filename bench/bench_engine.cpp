@@ -2,7 +2,7 @@
 //
 //   ./build/bench/bench_engine                       # wall(10,20,40); 1 and 2 threads
 //   ./build/bench/bench_engine --scenes wall10,wall40 --threads 2 --pre bj,mg
-//   ./build/bench/bench_engine --scenes wall100 --threads 2 --steps 3   # minutes per step today
+//   ./build/bench/bench_engine --scenes wall100 --threads 2 --steps 3   # minutes per step
 //   ./build/bench/bench_engine --budget 20 --steps 40 --csv out.csv
 //   ./build/bench/bench_engine --solver-only        # the linear solver alone, cold solves
 //   ./build/bench/bench_engine --scenes wall40 --threads 2 --pre pcg,chol --gg 1   # dynamic walls

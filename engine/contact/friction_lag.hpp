@@ -67,7 +67,7 @@ inline LaggedFriction lagged_friction(const FrictionMemory& m, ContactState stat
 // force at the step's end is n (compression positive): max(0, n), or with
 // friction_lag the lagged N_f = N_f0 + w·(max(0, n) − N_f0), w from
 // lag_weight above (the simplified Prakash–Clifton law, Ranjith and Rice
-// 2001, over the interface's own life): stable for every Δt/t_r, today's
+// 2001, over the interface's own life): stable for every Δt/t_r, the unlagged
 // max(0, n) once Δt ≫ t_r (w = 1), and N itself in steady sliding. Every
 // friction decision and force takes its N from here.
 inline double friction_normal(const LaggedFriction& lag, double n) {

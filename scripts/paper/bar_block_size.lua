@@ -50,7 +50,7 @@ local nu = dda.param("nu", bars.rock.nu)
 -- block every node on a joint adds a contact, so the joint stiffens with the mesh).
 local penalty = dda.param("penalty", false)
 -- max_precursor (%): error unless every run's precursor lies under it (the
--- issue's target: 2 % of the amplitude at g0 <= 20E).
+-- the target: 2 % of the amplitude at g0 <= 20E).
 local max_precursor = dda.param("max_precursor", nil)
 local E, A, f = wave.E, wave.A, 1000
 local t_end = 3.6e-3  -- past the first tensile peak at the centre (about 3.2 ms)

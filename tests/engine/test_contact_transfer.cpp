@@ -1,4 +1,4 @@
-// Contacts that follow large motions (issue 22, item 1): a vertex that slides
+// Contacts that follow large motions: a vertex that slides
 // past the end of an edge transfers to the next edge at that corner or to a
 // vertex-vertex contact (docs/contact_transfer.md), so blocks
 // slide down steps, topple and fall onto others without a false penetration
@@ -47,7 +47,7 @@ double speed(const World& w, BlockId b) { return w.block_velocity(b).head<2>().n
 
 }  // namespace
 
-// The geometry of the slope that stalled (issue 22): two blocks meet a third
+// The geometry of the slope that stalled: two blocks meet a third
 // at a junction of joints 85° apart, and one slides s = 6.5 cm down the
 // oblique joint past the corner. Its corner then lies on the joint's line, s
 // behind the line of the other block's top face, beside that block, not in

@@ -415,7 +415,7 @@ TEST(OpenClose, LooseSolvesUntilStatesHoldGiveTheTightAnswer) {
   EXPECT_LT(statics.cg_loose, statics.cg_tightest);
 }
 
-// Issue 22, item 5: under the holding law a sliding contact's friction
+// Under the holding law a sliding contact's friction
 // iterates to the normal force of the accepted solve, so the plain scheme
 // (every solve tight) and the loose one converge to one answer. Reference:
 // the same wall with every solve at 1e-13 / 1e-14, as above. Measured, 10

@@ -1,4 +1,4 @@
-// Coulomb friction against closed forms (issue 22): a block on an incline
+// Coulomb friction against closed forms: a block on an incline
 // that must hold stays at rest, one that must slide does so at
 // a = g(sin α − cos α tan φ), at every step size, and the same inside a model
 // 100 times larger. Rigid-block references; the blocks are elastic granite
@@ -320,7 +320,7 @@ TEST(Friction, LowerBlockOfASlidingStackHolds) {
   }
 }
 
-// The cut-and-redo path (issue 22, item 6): the incline (30° on 20°) at
+// The cut-and-redo path: the incline (30° on 20°) at
 // Δt = 1e-2 s with g2 = 0.004, so that from t = 0.43 s on the slide outgrows
 // the g2 bound and Δt is cut by three and grows back again and again (47
 // cuts to t = 1 s), against the closed form ½·a·t² at its end time. Reference
@@ -357,7 +357,7 @@ TEST(Friction, CutMidSlideFollowsTheSmallerStepsRun) {
   EXPECT_FALSE(cut.opened);
 }
 
-// Sliding at small steps (issue 22, item 3). Undamped, friction couples the
+// Sliding at small steps. Undamped, friction couples the
 // elastic block's two lowest strain modes (about 4,300 and 5,500 rad/s on
 // their springs) into one that grows (ω ≈ 4,700 rad/s, growth 150 s⁻¹ at
 // φ = 20°, 440 s⁻¹ at 25°: the linearised block, docs/friction_flutter.md); Shi's
@@ -396,7 +396,7 @@ TEST(FrictionLong, StrainDampingSlidesAtTheClosedFormRateAtOneMicrosecond) {
   expect_damped_slides_at_the_closed_form_rate(1e-6, 0.1);
 }
 
-// The stack at small steps (issue 22, item 2), with the strain damping of the
+// The stack at small steps, with the strain damping of the
 // tests above: settled first (static analysis, gg = 0, both joints at 20°),
 // then dynamic with the upper joint at 10°. References: the lower block does
 // not slip, bound 1e-10 m between T/3 and T (T = 0.1 s; measured up to 1.0e-11
@@ -440,15 +440,14 @@ TEST(FrictionLong, StrainDampingHoldsTheLowerBlockOfAStackAtOneMicrosecond) {
   expect_stack_holds(1e-6, {Integrator::Shi, Integrator::Newmark}, kStrainDamping, 0);
 }
 
-// The gap decisions' band is in the step's own units too (issue 22, item
-// 4): the incline's block dropped from 1 cm (30° on 20°, Δt = 1e-3 s) lands
-// with its contacts open, closes them, and rocks, opening and closing them
-// again (the open-close iteration does not settle at 30 steps and cuts them).
-// Inside a model 100 times taller (a block fixed 300 m below) it moves the
-// same. Reference: the small model's slip at 0.3 s; bound 1e-9 of it
-// (measured: the same bits). Before, with the gap band contact_tolerance ×
-// half the model's height (1.5e-9 m against 1.5e-7 m there), 0.0566 m
-// against 0.0526 m.
+// The gap decisions' band is in the step's own units too: the incline's
+// block dropped from 1 cm (30° on 20°, Δt = 1e-3 s) lands with its contacts
+// open, closes them, and rocks, opening and closing them again (the
+// open-close iteration does not settle at 30 steps and cuts them). Inside a
+// model 100 times taller (a block fixed 300 m below) it moves the same.
+// Reference: the small model's slip at 0.3 s; bound 1e-9 of it (measured:
+// the same bits). With the gap band contact_tolerance × half the model's
+// height (1.5e-9 m against 1.5e-7 m there) they move 0.0566 m and 0.0526 m.
 // The same with friction_lag = 3 ms (measured 2.3e-10 of the slip apart;
 // with the strength built from the first N over t_r, 2.9e-9).
 TEST(Friction, LandingBlockMovesTheSameInAModelHundredTimesLarger) {
@@ -530,7 +529,7 @@ TEST(Friction, BlockLandingOnAFlatFaceFromOneMetreEndsWhereItLands) {
   }
 }
 
-// Items 2 and 3 of issue 22 under a second-order integrator: generalized-α
+// Holding and sliding under a second-order integrator: generalized-α
 // (Chung & Hulbert; second order at every ρ∞) with the blocks' strain damping
 // and the holding law. Reference: a = g(sin α − cos α tan φ) within 0.1 %,
 // no contact opening after T/3 (T = 0.3 s; 0.1 s at Δt = 1e-6 s); the block
@@ -714,7 +713,7 @@ TEST(Friction, LaggedFrictionHoldsTheLowerBlockOfAStackAtSmallSteps) {
 
 // A lag much shorter than the step is no lag: with t_r = 1e-6 s at
 // Δt = 1e-3 s the new N's weight, 1 − exp(−1000), is 1 to the last bit, and
-// the slide is today's bit for bit (reference: the run without the control;
+// the slide is the unlagged one bit for bit (reference: the run without the control;
 // tolerance: none, the state hashes are equal).
 TEST(Friction, LagMuchShorterThanTheStepIsNoLag) {
   Incline off(30, 20, 1e-3), lagged(30, 20, 1e-3);

@@ -27,7 +27,7 @@ TEST(GroundMotion, ElCentroArray7PeaksMatchTheHeaderAfterBaselineCorrection) {
   // header gives the peaks as negative; the values in the file have the
   // opposite polarity (largest sample +450.322), so magnitudes are compared.
   // Tolerance 3 % on PGV and PGD after the default correction (a degree-2
-  // polynomial off the velocity), as issue 26 asks; the time of each peak
+  // polynomial off the velocity), the time of each peak
   // exactly on its sample.
   const GroundMotion raw = GroundMotion::read_accelerogram(kElCentro);
   EXPECT_EQ(raw.size(), 1848u);  // 1,845 values and three trailing zeros

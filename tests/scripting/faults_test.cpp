@@ -1,4 +1,4 @@
-// Faults that used to crash the Lua layer (issue 24), each reproduced first:
+// Faults that used to crash the Lua layer, each reproduced first:
 // corrupted bytecode through require, dofile and load segfaulted inside
 // liblua; getmetatable(m).__gc(m) deleted a model that handles still used.
 #include <gtest/gtest.h>

@@ -1,4 +1,4 @@
-"""The smaller faults of issue 24 (item 9), each reproduced first: an empty
+"""Smaller faults, each reproduced first: an empty
 --threads taken as 0; an unusable frames folder with --frames (or
 on_error = "continue") stopping the run although a failing frame is to be
 reported and the run to go on; a bytecode script and a memory error with
