@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The dda maintainers
 // Engine step benchmark in C++ (the benchmark table itself is scripts/bench/run.sh).
 //
 //   ./build/bench/bench_engine                       # wall(10,20,40); 1 and 2 threads

@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The dda maintainers
 // Model geometry: domain, holes (dda.Hole), material regions, joint sets,
 // joint lines and block generation through dda::geometry::cut_blocks.
 #include <climits>

@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The dda maintainers
 // dda.RockMaterial and dda.JointMaterial: m:rock{...}, m:joint{...},
 // m:default_joint(); fields readable and writable (rock.E = 60e9).
 #include <cstring>

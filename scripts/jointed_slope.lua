@@ -1,3 +1,5 @@
+-- SPDX-License-Identifier: GPL-3.0-or-later
+-- SPDX-FileCopyrightText: 2026 The dda maintainers
 -- jointed_slope.lua: a jointed rock slope settling and sliding under gravity.
 --
 -- Models:  a 20 m high slope (face at 60 deg, 10 m of ground in front of its

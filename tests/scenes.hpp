@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The dda maintainers
 #pragma once
 // The C++ scenes, shared by the tests (engine, geometry, allocation) and the
 // C++ benchmarks (bench/). Lua scripts share scripts/bench/scenes.lua, which

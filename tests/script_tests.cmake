@@ -1,3 +1,5 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
+# SPDX-FileCopyrightText: 2026 The dda maintainers
 # Tests that run scripts with the dda executable (`dda run`, outputs under the
 # build folder). Labels: `scripts` (the example scripts), `paper` (the paper's
 # targets, quick cases), `long` (full sweeps and figure runs: ctest -L long).

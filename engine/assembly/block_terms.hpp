@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The dda maintainers
 #pragma once
 // Each block's own terms of the step's system: the diagonal block and the
 // right-hand side from its elasticity, initial stress, inertia and body

@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The dda maintainers
 #pragma once
 // The DetectContacts stage: which vertex-edge pairs are contacts this step,
 // with the state each carries over, and their linearisation.

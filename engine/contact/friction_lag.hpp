@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The dda maintainers
 #pragma once
 // Friction that lags the normal force (the control friction_lag, t_r in
 // seconds; 0: none; docs/friction_flutter.md): the normal force N_f a contact's

@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The dda maintainers
 #pragma once
 // The landing law (control `restitution`, off by default; docs/landings.md):
 // a contact that lands in a step ends it as a rigid-body impact with a

@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The dda maintainers
 #pragma once
 // The contact-transfer checks of a reused contact list, run only where their
 // answer can have changed. Each step, every kept contact's vertex must be

@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The dda maintainers
 #pragma once
 // Aggregation multigrid on the 6×6 blocks, used as a PCG preconditioner.
 //

@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The dda maintainers
 #pragma once
 // The step's linear solver: PCG (pcg.hpp) or the kept CHOLMOD factor
 // (cholmod_solver.hpp), chosen once per step (SolverSettings::kind; Auto

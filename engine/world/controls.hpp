@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The dda maintainers
 #pragma once
 // The controls of a World: what a script sets with dda.model{...} and
 // m:controls{...}. They may change between steps and are checked at the

@@ -1,4 +1,6 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: GPL-3.0-or-later
+# SPDX-FileCopyrightText: 2026 The dda maintainers
 # The engine benchmark table: every scene with 1 and 2 threads, one dda
 # process per row (so each row's peak memory is its own), as CSV with the
 # machine's description on its first line.

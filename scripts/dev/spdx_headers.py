@@ -1,4 +1,6 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: GPL-3.0-or-later
+# SPDX-FileCopyrightText: 2026 The dda maintainers
 """SPDX headers (REUSE specification 3.2) at the top of every tracked file that
 can carry a comment: the licence and the copyright holder, in the file's own
 comment syntax, after a shebang or a doctype. A file that already names its

@@ -1,3 +1,5 @@
+-- SPDX-License-Identifier: GPL-3.0-or-later
+-- SPDX-FileCopyrightText: 2026 The dda maintainers
 -- bar_block_size.lua: the paper's Model 1 joints in bars of smaller blocks: how
 -- far the blocks' own error (first peaks, and the wrong-sign precursor ahead of
 -- a compressive pulse) falls as the blocks shrink, against the exact jointed bar.

@@ -1,3 +1,5 @@
+-- SPDX-License-Identifier: GPL-3.0-or-later
+-- SPDX-FileCopyrightText: 2026 The dda maintainers
 -- jointed_bar_exact_check.lua: the exact jointed-bar tool (jointed_bar_exact.lua)
 -- against closed forms, and the exact numbers of the paper's Model 1.
 --

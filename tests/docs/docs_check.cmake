@@ -1,3 +1,5 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
+# SPDX-FileCopyrightText: 2026 The dda maintainers
 # The docs stay short and their links resolve (cmake -P, a second or less):
 #  - every docs/*.md and README.md is at most 400 lines, except the reports
 #    the paper scripts generate from their runs (docs/validation.md: its

@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The dda maintainers
 // Contacts that follow large motions: a vertex that slides
 // past the end of an edge transfers to the next edge at that corner or to a
 // vertex-vertex contact (docs/contact_transfer.md), so blocks

@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The dda maintainers
 // Contact detection: a joint between two blocks carries exactly two contacts
 // (k_n = 2·g0/l, the paper's Eq. 4); touching corners of aligned blocks none.
 #include <gtest/gtest.h>

@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The dda maintainers
 // Motion against closed forms: free fall, a block on an incline, a settled
 // stack; and bit-identical results for any thread count.
 #include <gtest/gtest.h>

@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The dda maintainers
 // Coulomb friction against closed forms: a block on an incline
 // that must hold stays at rest, one that must slide does so at
 // a = g(sin α − cos α tan φ), at every step size, and the same inside a model

@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The dda maintainers
 // Earthquake input: reading accelerograms, resampling, baseline correction
 // and integration (engine/loading/ground_motion.hpp).
 #include <gtest/gtest.h>

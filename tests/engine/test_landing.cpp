@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The dda maintainers
 // The landing law (control `restitution`; contact/landing.hpp,
 // docs/landings.md) against the rigid-body impact
 // law's closed forms: a block that lands leaves its face at e times its

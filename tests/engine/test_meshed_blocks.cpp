@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The dda maintainers
 // Meshed (deformable) blocks (block/mesh.hpp, assembly/mesh_reduction.hpp,
 // docs/meshed_blocks.md): the mesher, rigid motion, contacts on the outline,
 // determinism, and the 1-D wave equation in one meshed block.

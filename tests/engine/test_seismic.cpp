@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The dda maintainers
 // Shaking a model: Newmark's sliding block on a rigid shaken base, and the
 // compliant (quiet) base with an incident wave (docs/seismic.md).
 #include <gtest/gtest.h>

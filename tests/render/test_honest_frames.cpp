@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The dda maintainers
 // Frames that never mislead: a sequence's colours follow the data unless a
 // range is declared; the colour bar marks the frame's true min and max and
 // grows an arrow end where values pass a set range; the choice is printed;

@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The dda maintainers
 // What a new user gets: scripts/incline.lua run with the engine's defaults
 // (no contact_law set: "holding") against the closed forms of a rigid block
 // on a rigid incline (docs/contacts.md, "A new

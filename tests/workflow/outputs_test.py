@@ -1,3 +1,5 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
+# SPDX-FileCopyrightText: 2026 The dda maintainers
 """Outputs that cannot be lost quietly. Each fault
 was reproduced first: before, a full disk truncated the monitor CSV, left a
 torn last row and the run exited 0; os.exit() with frames still queued lost
