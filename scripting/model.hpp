@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The dda maintainers
 #pragma once
 // The model a script builds: a dda::World plus what the Lua layer keeps beside
 // it: the geometry input for block cutting, which block edges lie on the

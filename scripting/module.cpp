@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The dda maintainers
 // The `dda` module table: dda.model{...}, dda.load(file), dda.param(name, default),
 // dda.output(name), dda.out_dir(), dda.fields, dda.version.
 #include <cstdio>

@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The dda maintainers
 #pragma once
 // One stepping call's run, step by step: what m:step, m:run_until and m:run
 // do on the Lua thread and m:start does on its own thread. The same steps

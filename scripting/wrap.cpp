@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The dda maintainers
 // Shared wrapper machinery: type registration, handles and their checks,
 // edge selection.
 #include "wrap.hpp"

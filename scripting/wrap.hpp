@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The dda maintainers
 #pragma once
 // Shared pieces of the Lua wrappers (one wrap_*.cpp per exposed type).
 //

@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The dda maintainers
 // Boundaries and prescribed displacements on edges and points (the paper's
 // VBC, SBC and DHI, as implemented by the engine):
 //   edges:viscous_boundary{rock = r, vx = h, vy = h} → dda.Boundary

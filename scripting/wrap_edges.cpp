@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The dda maintainers
 // dda.EdgeSet: m:edges{...} selections, and what can be done with a set of
 // edges (fixed points at their ends, a pressure on them).
 #include <algorithm>

@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The dda maintainers
 // dda.Model: controls, stepping, statistics, contacts. (Geometry methods are
 // in wrap_geometry.cpp; materials, blocks, edges, loads and monitors add their
 // constructors to the model from their own files.)

@@ -1,3 +1,5 @@
+-- SPDX-License-Identifier: GPL-3.0-or-later
+-- SPDX-FileCopyrightText: 2026 The dda maintainers
 -- rock_bar.lua: a stress wave through the paper's jointed rock bar, Model 1.
 --
 -- Models:  a 20 m x 1 m bar cut by a horizontal and a vertical joint set, both

@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The dda maintainers
 #pragma once
 // The blocks' state in flat arrays indexed by block id (Box2D's b2BodyState
 // against b2Body): what every step reads and writes first, then what only

@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The dda maintainers
 #pragma once
 // How a block's inertia, dashpot velocity, warm start and end-of-step motion
 // follow from its step displacement d: the one place that knows the time

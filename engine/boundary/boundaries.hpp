@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The dda maintainers
 #pragma once
 // Boundary conditions at material points of the blocks: fixed points,
 // prescribed displacements (the paper's DHI), viscous boundaries (VBC) and

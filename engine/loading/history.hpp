@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The dda maintainers
 #pragma once
 // A time history: piecewise linear through (t, value) points, constant
 // before the first and after the last. Loads that follow a history are

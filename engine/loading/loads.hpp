@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The dda maintainers
 #pragma once
 // Loads on the blocks (the paper's point loads, FHI and SHI): what a model
 // holds, and their terms in each step. Histories are evaluated at the end of

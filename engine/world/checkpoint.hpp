@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The dda maintainers
 #pragma once
 // Checkpoint and restart: a World's whole state in one file, so that a run
 // continues from it bit for bit as if it had never stopped (the same state

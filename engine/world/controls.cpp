@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The dda maintainers
 #include "world/controls.hpp"
 
 #include <cmath>
@@ -109,8 +111,8 @@ const ControlSpec kControls[] = {
         "from the start: a block that must hold on a slope holds, and one that slides does so at the "
         "closed-form rate, from Δt = 1e-2 to 1e-4 s; at smaller Δt a block's strain modes can chatter on its "
         "contacts (at 1e-5 s a sliding block; a 0.5 m block that must hold, loaded at once, creeps; under "
-        "`\"shi\"` too; `strain_damping` or `friction_lag` cures it). `\"shi\"`: Shi's law as the engine "
-        "had it before the holding law, bit for bit: a contact that closes or locks again does so unloaded, "
+        "`\"shi\"` too; `strain_damping` or `friction_lag` cures it). `\"shi\"`: Shi's law (1988), "
+        "the paper's: a contact that closes or locks again does so unloaded, "
         "and a block that must stay on a slope creeps down it at small Δt; the paper's scripts pin it to "
         "reproduce the paper's figures and the validation report (docs/contacts.md)"),
     number(
@@ -121,7 +123,7 @@ const ControlSpec kControls[] = {
         "`\"newmark\"` at every Δt): the block chatters. 5e-5 (12 % at the 750 Hz of a 1 m granite block) "
         "keeps such a block sliding at the closed-form rate on φ up to 25°; a larger φ or a larger block "
         "(lower ω) needs more. A wave of those frequencies is damped as much: the paper's bar loses 5 % of its "
-        "peak at 1e-6 (`docs/contacts.md`)",
+        "peak at 1e-6 (`docs/friction_flutter.md`)",
         "0 (off)"),
     number(
         "friction_lag", [](Controls& c) -> double& { return c.friction_lag; }, kZeroOffOrPositive,
@@ -130,11 +132,11 @@ const ControlSpec kControls[] = {
         "exactly for any Δt (Δt ≫ t_r: no lag); in steady sliding N_f = N, and a contact that closes (a landing) "
         "is a new interface: its N_f is the mean of the N it has carried since. The fast swings of N that couple a "
         "sliding block's strain modes into chatter (Δt ≤ 1e-5 s) "
-        "no longer reach its friction: with 3e-3, under `contact_law = \"holding\"` and Shi's integrator, a 1 m "
+        "do not reach its friction: with 3e-3, under `contact_law = \"holding\"` and Shi's integrator, a 1 m "
         "granite block slides at the closed-form rate with its contacts closed at Δt = 1e-2 to 1e-6 s, φ up to "
         "45° (with gravity switched on at once, up to 25° below 1e-5 s), and waves through intact joints are "
-        "untouched. Not yet the default: under `\"shi\"` it lets that law's model-wide band hold a block that "
-        "must slide (`docs/contacts.md`)",
+        "untouched. Not the default: under `\"shi\"` it lets that law's model-wide band hold a block that "
+        "must slide (`docs/friction_flutter.md`)",
         "0 (off)"),
     number(
         "restitution", [](Controls& c) -> double& { return c.restitution; }, kOffOrUnitInterval,
@@ -144,7 +146,7 @@ const ControlSpec kControls[] = {
         "restitution e in [0, 1] would end it: it leaves at e times its approach speed (at 0 it stays on the "
         "face), its contact point stops if Coulomb's bound μ·(normal impulse) allows, else slides with that "
         "impulse, the same at every Δt. -1: off, the penalty springs' bounce (about 0.76 at Δt = 1e-3 s, another "
-        "at each Δt). Integrator `\"shi\"` and first-order blocks only (`docs/contacts.md`, \"Landings\")",
+        "at each Δt). Integrator `\"shi\"` and first-order blocks only (`docs/landings.md`)",
         "-1 (off)"),
     number(
         "contact_range", [](Controls& c) -> double& { return c.contact_range; }, kZeroOrPositive,

@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The dda maintainers
 #pragma once
 // The controls of a World: what a script sets with dda.model{...} and
 // m:controls{...}. They may change between steps and are checked at the
@@ -57,19 +59,19 @@ struct Controls {
   // contact_slack.)
   double contact_tolerance = 1e-9;
   // The contact law (contact/contact_model.hpp, one file each): Holding,
-  // in which friction holds (the default); Shi, the law of Shi (1988) as the
-  // engine had it before, opt-in (a block that must hold on a slope creeps at small Δt;
+  // in which friction holds (the default); Shi, the law of Shi (1988),
+  // opt-in (a block that must hold on a slope creeps at small Δt;
   // the paper's scripts pin it to reproduce the paper's figures).
   ContactLaw contact_law = ContactLaw::Holding;
   // Kelvin–Voigt damping of the blocks' strains, σ = E(ε + β·ε̇): β in
   // seconds, a damping ratio βω/2 at angular frequency ω; 0: none (the
   // default). It keeps a block sliding at small Δt from chattering
-  // (docs/contacts.md).
+  // (docs/friction_flutter.md).
   double strain_damping = 0;
   // Friction that lags the normal force: t_r in seconds, the friction's
   // normal force N_f following N as dN_f/dt = (N − N_f)/t_r; 0: none (the
   // default). It keeps a block sliding at small Δt from chattering without
-  // damping waves (docs/contacts.md).
+  // damping waves (docs/friction_flutter.md).
   double friction_lag = 0;
   // The landing law (contact/landing.hpp): a contact that lands ends its
   // step as a rigid-body impact with this coefficient of restitution e,

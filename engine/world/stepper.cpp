@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The dda maintainers
 // The DDA time step as its table of contents (as Box2D v3's b2World_Step):
 //
 //   step

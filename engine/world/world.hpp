@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The dda maintainers
 #pragma once
 // The model: a World owns every block, material, load, boundary, followed
 // point and contact (WorldState), and a Stepper that advances it one DDA

@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The dda maintainers
 #pragma once
 // What a World is: its controls, materials, blocks, loads, boundaries,
 // followed points, contacts and clock. The World's methods build and read it;

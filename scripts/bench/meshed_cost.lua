@@ -1,3 +1,5 @@
+-- SPDX-License-Identifier: GPL-3.0-or-later
+-- SPDX-FileCopyrightText: 2026 The dda maintainers
 -- meshed_cost.lua: the cost of meshed blocks against first-order blocks of
 -- the same count (docs/meshed_blocks.md, "Cost"), as a whole process to time.
 --

@@ -1,3 +1,5 @@
+-- SPDX-License-Identifier: GPL-3.0-or-later
+-- SPDX-FileCopyrightText: 2026 The dda maintainers
 -- scenes.lua: the benchmark scenes, as a module (no run).
 --
 -- Models:  wall(N)   quasi-static brick wall: N columns of 1 m x 0.5 m bricks,

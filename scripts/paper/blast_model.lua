@@ -1,3 +1,5 @@
+-- SPDX-License-Identifier: GPL-3.0-or-later
+-- SPDX-FileCopyrightText: 2026 The dda maintainers
 -- blast_model.lua: the paper's Section 4 blasting model, shared by blast.lua
 -- (runs) and usable by any script that needs the same geometry (the recipe of
 -- blast_geometry.lua). No run, no output: build{...} returns the model.

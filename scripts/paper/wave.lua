@@ -1,3 +1,5 @@
+-- SPDX-License-Identifier: GPL-3.0-or-later
+-- SPDX-FileCopyrightText: 2026 The dda maintainers
 -- wave.lua: shared runner and measurements for the paper's rock-bar figures
 -- (Sections 2 and 3: scripts/paper/fig*.lua and validation_report.lua).
 --

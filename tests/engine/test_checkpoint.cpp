@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The dda maintainers
 // Checkpoint and restart (world/checkpoint.hpp): a World saved after N steps
 // and loaded into a fresh one continues bit for bit (reference: the same
 // World stepped N + M times straight; tolerance: none, the state hashes are

@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The dda maintainers
 // Checkpoints as untrusted input (world/checkpoint.hpp, core/archive.hpp,
 // core/load_check.hpp): a payload edited with both checksums recomputed
 // (checkpoint_file: anyone can do it) is refused with a message naming the

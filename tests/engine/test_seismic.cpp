@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The dda maintainers
 // Shaking a model: Newmark's sliding block on a rigid shaken base, and the
 // compliant (quiet) base with an incident wave (docs/seismic.md).
 #include <gtest/gtest.h>
@@ -254,7 +256,7 @@ std::vector<std::pair<double, double>> resonances(Wave wave, double H, double rh
   return peaks;
 }
 
-// The tolerances of issue 26: resonances f1 and 3·f1 within 3 %, their
+// The tolerances: resonances f1 and 3·f1 within 3 %, their
 // peaks within 5 % of 1/α.
 void expect_resonances(const std::vector<std::pair<double, double>>& peaks, double f1, double alpha) {
   EXPECT_NEAR(peaks[0].first, f1, 0.03 * f1);
@@ -270,7 +272,7 @@ TEST(SiteResponse, LayerOnHalfSpaceThroughTheCompliantBaseS) {
   // half-space, |A(f)| = 1/sqrt(cos²(kH) + α² sin²(kH)), k = 2πf/Vs1,
   // α = ρ1·Vs1/(ρ2·Vs2): resonances at f1 = Vs1/4H and f2 = 3·f1 with peaks
   // 1/α. H = 20 m, Vs1 = 200 m/s, Vs2 = 400 m/s, ρ1 = ρ2 (α = 0.5): f1 =
-  // 2.5 Hz, f2 = 7.5 Hz. Tolerances (issue 26): frequencies 3 %, peaks 5 %.
+  // 2.5 Hz, f2 = 7.5 Hz. Tolerances: frequencies 3 %, peaks 5 %.
   // Measured: f1 and f2 within 0.1 % (the search grid's step); peaks
   // −0.09 % and −1.83 % (Shi's scheme with gg = 1 damps the second;
   // Δt = 0.2 ms, 20 blocks).
@@ -293,7 +295,7 @@ TEST(SiteResponse, LayerOnHalfSpaceThroughTheCompliantBaseP) {
 }
 
 TEST(SiteResponse, LayerOnHalfSpaceUnderTheSecondOrderIntegrator) {
-  // Issue 26 asks for the site response with the second-order integrator:
+  // The site response with the second-order integrator:
   // the same closed form and tolerances as the two tests above (f1, f2
   // within 3 %, peaks within 5 % of 1/α = 2), the same models and steps,
   // under Newmark's average acceleration (no numerical damping, so the
@@ -386,7 +388,7 @@ TEST(FreeField, FlatTopMovesAsTheColumn) {
   // Reference: the 1-D column's surface velocity (its own computation,
   // driven by the same incident wave). A flat-topped model with free-field
   // sides must move as the column all along its top, within 2 % of the
-  // column's peak at every vertex and step (issue 26). Measured 0.11 %.
+  // column's peak at every vertex and step. Measured 0.11 %.
   // With free sides the same model is off by far more (measured 56 %; with
   // the free field's dashpots but not its stresses, 13 %).
   const FlatTopRun with = run_flat_top(true);

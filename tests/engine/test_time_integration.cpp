@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The dda maintainers
 // The time integrators (block/time_scheme.hpp) against closed forms on a
 // mass on a spring: one square block held at its centroid by a fixed point,
 // whose translation is then an undamped oscillator m·ẍ = −k·x (k =

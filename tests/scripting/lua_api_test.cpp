@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The dda maintainers
 // The dda Lua module in-process: selections, loads and histories, monitors,
 // stepping calls and callbacks, handle validity, and errors raised safely.
 #include <gtest/gtest.h>
