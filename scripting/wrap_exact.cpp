@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The dda maintainers
 // dda.exact_plate_bar{...} and dda.exact_joint_set{...}: the exact answers the
 // wave scripts compare the engine with (engine/reference/).
 #include "reference/joint_set.hpp"

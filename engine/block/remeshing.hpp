@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The dda maintainers
 #pragma once
 // What meshing first-order blocks in place changed (world/wave_model.hpp:
 // the wave model meshes a model's blocks before its first step, after its

@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The dda maintainers
 #pragma once
 // The highest frequency of a model's dynamic loads: what the wave model sizes
 // its elements by (world/wave_model.hpp) and what a rule for the time step

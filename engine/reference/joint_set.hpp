@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The dda maintainers
 #pragma once
 // The exact transmission of a harmonic P wave at normal incidence across N
 // parallel joints (a reference for the tests, not part of the step).

@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The dda maintainers
 #pragma once
 // The exact 2-D answer for a long elastic strip (a bar of height H, plane
 // stress or plane strain) loaded at its end x = 0 by a uniform pressure p(t):

@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The dda maintainers
 #pragma once
 // The wave model: how a model with dynamic loads is meshed and stepped when
 // its controls leave it to the engine (docs/waves.md).

@@ -1,3 +1,5 @@
+-- SPDX-License-Identifier: GPL-3.0-or-later
+-- SPDX-FileCopyrightText: 2026 The dda maintainers
 -- plate_bar.lua: the unjointed rock bar, the engine's default wave model against
 -- the exact 2-D answer (Rayleigh-Lamb plate modes) and the 1-D one.
 --

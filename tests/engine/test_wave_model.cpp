@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The dda maintainers
 // The wave model (world/wave_model.hpp): the loads' highest frequency, the
 // element size the engine picks from it, the blocks meshed in place before
 // the first step with every load, boundary and followed point following

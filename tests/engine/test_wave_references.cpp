@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The dda maintainers
 // The exact references of the wave tests (engine/reference/), checked against
 // what is known of them independently: closed forms, limits, and their own
 // mathematical properties.
