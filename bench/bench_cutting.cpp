@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The dda maintainers
 // Block cutting benchmark: prints the time to cut a few domains into blocks.
 //
 //   ./build/bench/bench_cutting [repeats]

@@ -1,8 +1,10 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The dda maintainers
 // Engine step benchmark in C++ (the benchmark table itself is scripts/bench/run.sh).
 //
 //   ./build/bench/bench_engine                       # wall(10,20,40); 1 and 2 threads
 //   ./build/bench/bench_engine --scenes wall10,wall40 --threads 2 --pre bj,mg
-//   ./build/bench/bench_engine --scenes wall100 --threads 2 --steps 3   # minutes per step today
+//   ./build/bench/bench_engine --scenes wall100 --threads 2 --steps 3   # minutes per step
 //   ./build/bench/bench_engine --budget 20 --steps 40 --csv out.csv
 //   ./build/bench/bench_engine --solver-only        # the linear solver alone, cold solves
 //   ./build/bench/bench_engine --scenes wall40 --threads 2 --pre pcg,chol --gg 1   # dynamic walls

@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The dda maintainers
 // Renderer benchmark: frames per second for a 1280×720 frame of a
 // 10,000-block model (a 100 × 100 grid of 1 m squares carrying a synthetic
 // stress wave), per stage and through the asynchronous writer.

@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The dda maintainers
 // The machine's memory bandwidth, as STREAM's triad measures it: a = b + s·c
 // over arrays of doubles, 24 bytes moved per element (two reads, one write;
 // the write-allocate read is not counted, as in STREAM), the best of several

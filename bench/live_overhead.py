@@ -1,4 +1,6 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: GPL-3.0-or-later
+# SPDX-FileCopyrightText: 2026 The dda maintainers
 """What watching a run costs it: the same `dda run` side by side, A B A B,
 plain (A) and with --live served to a client that asks what the page asks
 at its fastest (B): the status events, and a 960x540 frame as soon as the

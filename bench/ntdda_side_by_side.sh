@@ -1,4 +1,6 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: GPL-3.0-or-later
+# SPDX-FileCopyrightText: 2026 The dda maintainers
 # ntdda side by side: the benchmark's staggered walls in ntdda (the open-source
 # Shi/Doolin DDA in C: direct block LDL^T, one thread) and in this engine, CPU
 # milliseconds and open-close iterations per step, quasi-static and dynamic.

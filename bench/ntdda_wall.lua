@@ -1,3 +1,5 @@
+-- SPDX-License-Identifier: GPL-3.0-or-later
+-- SPDX-FileCopyrightText: 2026 The dda maintainers
 -- ntdda_wall.lua: this engine's half of bench/ntdda_side_by_side.sh: one wall,
 -- CPU ms, open-close iterations and simulated ms per step after the untimed ones.
 --

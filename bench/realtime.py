@@ -1,4 +1,6 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: GPL-3.0-or-later
+# SPDX-FileCopyrightText: 2026 The dda maintainers
 """Which scenes run faster than real time on this machine: each scene runs
 as a user runs it (dda run, its own defaults, or the settings given here to
 keep it short), and its run log's "run:" lines (one per stepping call) give

@@ -1,3 +1,5 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
+# SPDX-FileCopyrightText: 2026 The dda maintainers
 # Every CMakeLists.txt lists its sources by name (no globs: a target's sources
 # are read off its list, and a stray file is not picked up). The opposite
 # mistake, a .cpp file that no list names, would never be compiled (a test

@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The dda maintainers
 // libFuzzer target: the checkpoint loader (dda.load, dda run --restart). The
 // bytes are a checkpoint file; it must load and step, or be refused with a
 // dda::Error (or a script error). A crash, a sanitizer report, another

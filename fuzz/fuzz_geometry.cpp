@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The dda maintainers
 // libFuzzer target: the geometry input. The bytes become a domain polygon,
 // holes, joint sets, explicit joints, material regions and explicit blocks;
 // cut_blocks must either cut them or throw dda::Error, and a World built from

@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The dda maintainers
 // libFuzzer target: ground-motion records (dda.ground_motion{file = ...}).
 // The first byte chooses the format (the corrected-accelerogram layout or a
 // CSV), the unit, the resampling step and the baseline order; the rest is

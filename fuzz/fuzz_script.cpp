@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The dda maintainers
 // libFuzzer target: the script loader. The bytes are a Lua script run the
 // way `dda run` runs one (the dda module loaded, text only, a traceback
 // handler); it must succeed or fail with a Lua error. A crash, a sanitizer

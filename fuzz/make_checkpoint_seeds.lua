@@ -1,3 +1,5 @@
+-- SPDX-License-Identifier: GPL-3.0-or-later
+-- SPDX-FileCopyrightText: 2026 The dda maintainers
 -- make_checkpoint_seeds.lua: the seed corpus of dda_fuzz_checkpoint, real
 -- checkpoints of small models that hold every kind of state.
 --

@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The dda maintainers
 #include "background_run.hpp"
 
 #include <chrono>
@@ -85,7 +87,7 @@ void BackgroundRun::main() {
 }
 
 void start_background_run(lua_State* L, int model_idx, ScriptModel& m, RunPlan plan) {
-  const long s0 = begin_stepping_call(L, m);
+  const long s0 = begin_stepping_call(L, m, plan);
   m.background.reset();  // the last one's end, collected
   m.background = std::make_unique<BackgroundRun>(L, model_idx, m, std::move(plan), s0);
 }

@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The dda maintainers
 #pragma once
 // Runs that go on in the background while the console (or the rest of a
 // script) stays up: m:start{...} (or m:run{..., background = true}),

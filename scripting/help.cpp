@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The dda maintainers
 // help() and the API reference (docs/lua_api*.md), both from the tables
 // that register each function (wrap.hpp: Method, its options and the keys
 // it returns; the types' fields; the monitor fields; the engine's controls),

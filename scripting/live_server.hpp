@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The dda maintainers
 #pragma once
 // The live view: `dda run SCRIPT --live [ADDR:]PORT` and `dda console --live
 // [ADDR:]PORT` serve a page (plain HTML and JavaScript, embedded in the

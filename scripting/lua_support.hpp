@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The dda maintainers
 #pragma once
 // Shared machinery of the Lua layer: raising errors safely, reading option
 // tables strictly, and parsing the value shapes every wrapper accepts (points,

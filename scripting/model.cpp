@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The dda maintainers
 #include "model.hpp"
 
 #include <algorithm>
@@ -276,6 +278,15 @@ void ScriptModel::hand_over(ScriptTarget& t, lua_State* L) {
   }
 }
 
+int ScriptModel::add_edge_targets(const std::vector<EdgeRef>& edges, const Vec2& direction, ScriptTarget target,
+                                  lua_State* L) {
+  target.world_ids = world_->add_edge_targets(edges, target.mode != ScriptTarget::Mode::Vector, direction);
+  target.on_edges = true;
+  hand_over(target, L);
+  targets_.push_back(std::move(target));
+  return static_cast<int>(targets_.size()) - 1;
+}
+
 int ScriptModel::add_pressure(std::vector<EdgeRef> edges, TimeInput p, lua_State* L) {
   ScriptPressure pr;
   pr.world_id = world_->add_pressure_load(edges, 0);
@@ -410,6 +421,64 @@ void ScriptModel::apply_loads(lua_State* L, double t) {
     pr.current = pr.pressure.at(L, t);
     world_->set_pressure(pr.world_id, pr.current);
   }
+}
+
+const WaveModel& ScriptModel::decide_wave_model(lua_State* L, double window) {
+  if (world_->wave_model().decided) return world_->wave_model();
+  // The functions sampled as the steps will apply them, every Δt (at most
+  // 65,536 samples), over the run and at least 1000 steps: a short first run
+  // must not cut a pulse short. Not where the user states the frequency.
+  const double dt = world_->controls().g1 > 0 ? world_->controls().g1 : world_->default_time_step().dt;
+  window = std::max(window, 1000 * dt);
+  if (world_->controls().max_frequency > 0) window = 0;
+  const int count = static_cast<int>(std::min(65536.0, std::ceil(window / dt)));
+  std::vector<LoadSignal> signals;
+  // Each input once per sample time, its components as signals of their own.
+  // A function that fails at a later time is read up to there: its error
+  // belongs to the step that reaches that time, not to this look ahead.
+  auto sample = [&](SignalKind kind, const std::string& what, int components, auto values_at) {
+    std::vector<LoadSignal> s(components, LoadSignal{{}, kind, what});
+    for (int i = 0; i <= count; ++i) {
+      const double t = window * i / count;
+      Vec2 v;
+      try {
+        v = values_at(t);
+      } catch (const std::exception&) {
+        break;
+      }
+      for (int c = 0; c < components; ++c) s[c].samples.emplace_back(t, v[c]);
+    }
+    for (LoadSignal& one : s) signals.push_back(std::move(one));
+  };
+  busy_ = true;
+  try {
+    if (window > 0) {
+      for (std::size_t i = 0; i < pressures_.size(); ++i)
+        if (pressures_[i].pressure.is_function())
+          sample(SignalKind::Force, msg("the function of pressure ", i + 1), 1,
+                 [&](double t) { return Vec2(pressures_[i].pressure.at(L, t), 0); });
+      for (std::size_t i = 0; i < loads_.size(); ++i)
+        if (!loads_[i].force.engine_driven() && !loads_[i].force.constant())
+          sample(SignalKind::Force, msg("the function of point load ", i + 1), 2,
+                 [&](double t) { return loads_[i].force.at(L, t); });
+      for (std::size_t i = 0; i < targets_.size(); ++i)
+        if (targets_[i].mode == ScriptTarget::Mode::Displacement && targets_[i].input.is_function())
+          sample(SignalKind::Displacement, msg("the function of target ", i + 1), 1,
+                 [&](double t) { return Vec2(targets_[i].input.at(L, t), 0); });
+    }
+  } catch (...) {
+    busy_ = false;
+    throw;
+  }
+  busy_ = false;
+  const WaveModel& wave = world_->decide_wave_model(signals);
+  if (wave.meshed_blocks > 0) {
+    for (ScriptPressure& p : pressures_) p.edges = world_->pressure_edges(p.world_id);
+    for (ScriptPointLoad& p : loads_) p.block = world_->point_load_block(p.world_id);
+    for (ScriptTarget& t : targets_)
+      if (t.on_edges) t.world_ids = world_->edge_target_ids(t.world_ids.front());
+  }
+  return wave;
 }
 
 bool ScriptModel::loads_call_lua() const {

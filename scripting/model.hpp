@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The dda maintainers
 #pragma once
 // The model a script builds: a dda::World plus what the Lua layer keeps beside
 // it: the geometry input for block cutting, which block edges lie on the
@@ -111,6 +113,7 @@ struct ScriptTarget {
   enum class Mode { Vector, Displacement, Velocity, Acceleration };
   friend constexpr Mode enum_last(Mode) { return Mode::Acceleration; }  // (core/archive.hpp)
   std::vector<int> world_ids;
+  bool on_edges = false;  // made on edges (World::add_edge_targets): its ids follow a meshing
   Mode mode = Mode::Vector;
   Vec2 vector = Vec2::Zero();  // Mode::Vector
   TimeInput input;             // magnitude along each point's direction (a table, or a function for Displacement)
@@ -218,6 +221,9 @@ class ScriptModel {
   // direction) or one unit vector per point.
   int add_target(const std::vector<std::pair<BlockId, Vec2>>& points, const std::vector<Vec2>& directions,
                  ScriptTarget target, lua_State* L);
+  // Targets at the end points of edges (World::add_edge_targets: along
+  // `direction`, or the edges' inward normals when it is zero).
+  int add_edge_targets(const std::vector<EdgeRef>& edges, const Vec2& direction, ScriptTarget target, lua_State* L);
   void set_target(int id, ScriptTarget input, lua_State* L);
   ScriptTarget& target(int id) { return targets_.at(id); }
   int target_count() const { return static_cast<int>(targets_.size()); }
@@ -232,6 +238,13 @@ class ScriptModel {
   std::span<const std::unique_ptr<StepHook>> hooks() const { return hooks_; }
 
   // ---- stepping -------------------------------------------------------------
+  // Before the first step: the wave model (World::decide_wave_model), this
+  // model's Lua functions sampled every Δt over [0, window] (s: the run's
+  // end when the call that steps says it; at least 1000 steps) and read as
+  // the engine reads its histories;
+  // where it meshed the blocks, the loads and targets held here follow.
+  // Returns what was decided (notes, warnings).
+  const WaveModel& decide_wave_model(lua_State* L, double window);
   // One step: evaluate the time-varying loads at the step's planned end time
   // (on L, serially), World::step(), record the monitors. L is used only
   // for loads that are Lua functions (loads_call_lua()).

@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The dda maintainers
 // The `dda` module table: dda.model{...}, dda.load(file), dda.param(name, default),
 // dda.output(name), dda.out_dir(), dda.fields, dda.version.
 #include <cstdio>
@@ -203,6 +205,7 @@ int open_module(lua_State* L) {
   set_methods(L, functions, "dda");
   register_render_functions(L);
   register_ground_motion_functions(L);
+  register_exact_functions(L);
   lua_pushliteral(L, DDA_VERSION_TEXT);
   lua_setfield(L, -2, "version");
   const std::string fields = field_list();

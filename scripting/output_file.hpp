@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The dda maintainers
 #pragma once
 // Outputs of the Lua layer: every file is written through the checked
 // writers of core/output_file.hpp (whole files: write_file_atomically; CSV

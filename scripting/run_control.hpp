@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The dda maintainers
 #pragma once
 // Who may touch a model, and when: the rules that let a run go on in the
 // background while the console stays up, and a live view read it as it goes.

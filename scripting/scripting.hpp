@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The dda maintainers
 #pragma once
 // The Lua binding's entry points: the `dda` module, Lua states that have it,
 // and running scripts in them. The application (app/: `dda run`, the

@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The dda maintainers
 #pragma once
 // What a script run shares across every model it builds: the output folder,
 // the --set parameters, the --threads override, whether to draw a progress

@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The dda maintainers
 // Lua states with the dda module, and running files and strings in them
 // with a traceback handler.
 #include <cstdlib>

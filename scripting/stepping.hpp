@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The dda maintainers
 #pragma once
 // One stepping call's run, step by step: what m:step, m:run_until and m:run
 // do on the Lua thread and m:start does on its own thread. The same steps
@@ -106,9 +108,10 @@ class Stepping {
 
 // What every stepping call does first, on the Lua thread (wrap_model.cpp):
 // a pending --restart takes the checkpoint's state, Ctrl-C already pressed
-// stops it, the run log gets the controls. Returns the step count the call's
-// steps count from.
-long begin_stepping_call(lua_State* L, ScriptModel& m);
+// stops it, the run log gets the controls, and the model's first call
+// decides its wave model over the span `plan` asks for. Returns the step
+// count the call's steps count from.
+long begin_stepping_call(lua_State* L, ScriptModel& m, const RunPlan& plan);
 
 // The plan of m:run{...} / m:start{...} from its options (time, steps,
 // every, callback, realtime: run_plan_options()) (wrap_model.cpp).

@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The dda maintainers
 #pragma once
 // A lock taken in turns: whoever asks first holds it next (a ticket lock),
 // so a stepping loop that takes it for every step cannot starve a reader

@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The dda maintainers
 #pragma once
 // ParaView output: the model's state as VTK XML unstructured grids (.vtu),
 // one file of blocks and one of contacts per frame, and a ParaView data

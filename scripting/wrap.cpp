@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The dda maintainers
 // Shared wrapper machinery: type registration, handles and their checks,
 // edge selection.
 #include "wrap.hpp"
@@ -328,17 +330,33 @@ std::vector<BlockId> check_blockset(lua_State* L, int idx, const ScriptModel* mo
   return out;
 }
 
+// An edge set's id is the model's mesh generation when it was made: a set
+// taken before the wave model meshed the blocks stands for the element
+// edges along its edges now.
 void push_edgeset(lua_State* L, int model_idx, std::span<const EdgeRef> edges) {
-  Handle* h = push_handle(L, model_idx, kEdgeSetType, 0, static_cast<int>(edges.size() * sizeof(EdgeRef)));
+  auto* box = static_cast<ModelBox*>(lua_touserdata(L, model_idx));
+  const int generation = box && box->model && !box->model->closed() ? box->model->world().mesh_generation() : 0;
+  Handle* h = push_handle(L, model_idx, kEdgeSetType, generation, static_cast<int>(edges.size() * sizeof(EdgeRef)));
   h->count = static_cast<std::int32_t>(edges.size());
   std::copy(edges.begin(), edges.end(), set_edges(h));
+}
+
+std::vector<EdgeRef> edgeset_edges(const Handle* h) {
+  const auto* first = set_edges(const_cast<Handle*>(h));
+  std::vector<EdgeRef> stored(first, first + h->count);
+  const World& w = h->model->world();
+  if (h->id == w.mesh_generation()) return stored;
+  std::vector<EdgeRef> now;
+  for (const EdgeRef& e : stored)
+    for (const EdgeRef& p : w.edges_since_meshing(e)) now.push_back(p);
+  return now;
 }
 
 std::vector<EdgeRef> check_edgeset(lua_State* L, int idx, const ScriptModel* model, std::string_view call,
                                    std::string_view what) {
   Handle* h = check_handle(L, idx, kEdgeSetType, call, what);
   check_same_model(h, model, call, what);
-  std::vector<EdgeRef> out(set_edges(h), set_edges(h) + h->count);
+  std::vector<EdgeRef> out = edgeset_edges(h);
   for (const EdgeRef& e : out)
     if (static_cast<std::size_t>(e.block) >= h->model->world().block_count())
       fail(call, ": attempt to use a removed/invalid block (id ", e.block, ")");

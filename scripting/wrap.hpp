@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The dda maintainers
 #pragma once
 // Shared pieces of the Lua wrappers (one wrap_*.cpp per exposed type).
 //
@@ -118,6 +120,9 @@ std::vector<BlockId> check_blockset(lua_State* L, int idx, const ScriptModel* mo
 void push_edgeset(lua_State* L, int model_idx, std::span<const EdgeRef> edges);
 std::vector<EdgeRef> check_edgeset(lua_State* L, int idx, const ScriptModel* model, std::string_view call,
                                    std::string_view what);
+// An edge set's edges as they stand now (those of a set taken before the
+// wave model meshed the blocks: the element edges along them).
+std::vector<EdgeRef> edgeset_edges(const Handle* h);
 // Materials: a handle or nil (→ def). Returns the id.
 int check_rock(lua_State* L, int idx, const ScriptModel* model, std::string_view call, std::string_view what);
 int check_joint(lua_State* L, int idx, const ScriptModel* model, std::string_view call, std::string_view what);
@@ -166,6 +171,7 @@ void register_boundaries(lua_State* L);               // dda.Boundary, dda.Targe
 void register_render(lua_State* L);                   // model render methods, when the renderer is built
 void register_render_functions(lua_State* L);         // dda.plot into the module table at the top
 void register_ground_motion_functions(lua_State* L);  // dda.ground_motion into the module table at the top
+void register_exact_functions(lua_State* L);          // dda.exact_plate_bar, dda.exact_joint_set (likewise)
 // The frame sequence `dda run --frames N` asks for, on the new model at model_idx.
 void attach_session_frames(lua_State* L, int model_idx);
 void register_vtu(lua_State* L);  // m:vtu and dda.Vtu (wrap_vtu.cpp)

@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The dda maintainers
 // dda.Block and dda.BlockSet, and the model's block calls: m:add_block{...},
 // m:block(id), m:block_at(x, y), m:blocks{...}, m:block_count().
 #include <algorithm>

@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The dda maintainers
 // Boundaries and prescribed displacements on edges and points (the paper's
 // VBC, SBC and DHI, as implemented by the engine):
 //   edges:viscous_boundary{rock = r, vx = h, vy = h} → dda.Boundary
@@ -179,29 +181,7 @@ int es_target(lua_State* L) {
     if (direction->norm() == 0) fail("edges:target: option 'direction' must not be zero");
   }
   ScriptTarget target = read_target(o, true);
-  std::map<std::pair<BlockId, int>, Vec2> normals;  // (block, vertex) → sum of inward normals
-  std::vector<std::pair<BlockId, int>> order;
-  for (const EdgeRef& e : s.edges) {
-    const auto [a, b] = s.model->edge_points(e);
-    const Vec2 d = (b - a).normalized();
-    const Vec2 inward(-d.y(), d.x());
-    const int n = s.model->edge_count(e.block);
-    for (int v : {e.edge, (e.edge + 1) % n}) {
-      const auto key = std::make_pair(e.block, v);
-      auto [it, fresh] = normals.emplace(key, Vec2::Zero());
-      if (fresh) order.push_back(key);
-      it->second += inward;
-    }
-  }
-  std::vector<std::pair<BlockId, Vec2>> points;
-  std::vector<Vec2> directions;
-  for (const auto& key : order) {
-    points.emplace_back(key.first, s.model->world().block_vertices(key.first)[key.second]);
-    const Vec2 n = normals[key];
-    if (target.mode == ScriptTarget::Mode::Vector) continue;
-    directions.push_back(direction ? direction->normalized() : (n.norm() > 0 ? Vec2(n.normalized()) : Vec2::UnitX()));
-  }
-  const int id = s.model->add_target(points, directions, std::move(target), L);
+  const int id = s.model->add_edge_targets(s.edges, direction ? *direction : Vec2(Vec2::Zero()), std::move(target), L);
   push_model_of(L, 1);
   push_handle(L, -1, kTargetType, id);
   return 1;

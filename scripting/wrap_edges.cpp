@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The dda maintainers
 // dda.EdgeSet: m:edges{...} selections, and what can be done with a set of
 // edges (fixed points at their ends, a pressure on them).
 #include <algorithm>
@@ -92,12 +94,14 @@ Self self_edges(lua_State* L, const char* call) {
 int es_index(lua_State* L) {
   if (!lua_isinteger(L, 2)) return 0;
   Handle* h = check_handle(L, 1, kEdgeSetType, "edges[i]", "self");
+  check_same_model(h, nullptr, "edges[i]", "self");
   const lua_Integer i = lua_tointeger(L, 2);
-  if (i < 1 || i > h->count) {
+  const std::vector<EdgeRef> edges = edgeset_edges(h);
+  if (i < 1 || i > static_cast<lua_Integer>(edges.size())) {
     lua_pushnil(L);
     return 1;
   }
-  const EdgeRef e = set_edges(h)[i - 1];
+  const EdgeRef e = edges[i - 1];
   if (static_cast<std::size_t>(e.block) >= h->model->world().block_count())
     fail("edges[", i, "]: attempt to use a removed/invalid block (id ", e.block, ")");
   const auto [a, b] = h->model->edge_points(e);
@@ -119,8 +123,9 @@ int es_index(lua_State* L) {
 }
 
 int es_len(lua_State* L) {
-  auto* h = static_cast<Handle*>(luaL_checkudata(L, 1, kEdgeSetType));
-  lua_pushinteger(L, h->count);
+  Handle* h = check_handle(L, 1, kEdgeSetType, "#edges", "self");
+  check_same_model(h, nullptr, "#edges", "self");
+  lua_pushinteger(L, static_cast<lua_Integer>(edgeset_edges(h).size()));
   return 1;
 }
 

@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The dda maintainers
 // Model geometry: domain, holes (dda.Hole), material regions, joint sets,
 // joint lines and block generation through dda::geometry::cut_blocks.
 #include <climits>
@@ -314,7 +316,7 @@ void register_geometry(lua_State* L) {
        kJointSetOptions},
       {"joint_line", guarded<m_joint_line>, "m:joint_line{...}\nOne joint along a segment.", kJointLineOptions},
       {"generate", guarded<m_generate>,
-       "m:generate{...} → BlockSet, info\nCuts the domain into blocks (docs/scripting.md, \"Block generation\"); "
+       "m:generate{...} → BlockSet, info\nCuts the domain into blocks (docs/formulation.md, \"Block generation\"); "
        "`info` says what the cut did.",
        kGenerateOptions, kGenerateReturns},
       {}};

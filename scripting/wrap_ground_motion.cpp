@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The dda maintainers
 // Earthquake input: dda.ground_motion{...} reads an accelerogram (or takes
 // samples from the script), resamples it to a time step, baseline-corrects
 // it and integrates it (engine/loading/ground_motion.hpp). It returns a plain

@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The dda maintainers
 // Loads and constraints: m:point_load{...} (dda.PointLoad), m:fix(x, y), and
 // dda.Pressure (made by edges:pressure(p)).
 #include "wrap.hpp"

@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The dda maintainers
 // dda.RockMaterial and dda.JointMaterial: m:rock{...}, m:joint{...},
 // m:default_joint(); fields readable and writable (rock.E = 60e9).
 #include <cstring>
@@ -211,7 +213,7 @@ void register_materials(lua_State* L) {
       {"rock", guarded<m_rock>, "m:rock{...} → RockMaterial", kRockOptions},
       {"joint", guarded<m_joint>,
        "m:joint{...} → JointMaterial\nA joint material: Mohr-Coulomb strength and, when given, the joint's own "
-       "stiffness (docs/contacts.md).",
+       "stiffness (docs/time_integration.md, \"Joints with their own stiffness\").",
        kJointOptions},
       {"default_joint", guarded<m_default_joint>,
        "m:default_joint() → JointMaterial\nJoint material 0, which edges get when none is given (φ = 30°, "

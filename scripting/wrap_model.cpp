@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The dda maintainers
 // dda.Model: controls, stepping, statistics, contacts. (Geometry methods are
 // in wrap_geometry.cpp; materials, blocks, edges, loads and monitors add their
 // constructors to the model from their own files.)
@@ -186,14 +188,30 @@ void log_controls_once(lua_State* L, ScriptModel& m) {
                           m.world().default_time_step().describe());
 }
 
+// Before the first step: the wave model, the functions sampled over the run
+// this call asks for (to its end time, or its steps at the first step's Δt);
+// what it decided goes to the run log, its warnings to stderr too.
+void decide_wave_model_once(lua_State* L, ScriptModel& m, const RunPlan& plan) {
+  if (m.world().wave_model().decided) return;
+  const World& w = m.world();
+  const double dt = w.controls().g1 > 0 ? w.controls().g1 : w.default_time_step().dt;
+  const double window = plan.t_end >= 0 ? plan.t_end : static_cast<double>(std::max<long>(plan.steps, 0)) * dt;
+  const WaveModel& wave = m.decide_wave_model(L, window);
+  Session& s = session(L);
+  for (const std::string& note : wave.notes)
+    if (s.log.is_open()) s.log.line("wave model: " + note);
+  for (const std::string& warning : wave.warnings) warn(warning);
+}
+
 }  // namespace
 
-long begin_stepping_call(lua_State* L, ScriptModel& m) {
+long begin_stepping_call(lua_State* L, ScriptModel& m, const RunPlan& plan) {
   stop_if_params_only(L, "the first stepping call");
   restart_if_pending(L, m);
   const long s0 = m.replay_mark ? *m.replay_mark : m.world().step_count();
   stop_if_interrupted(m, nullptr);
   log_controls_once(L, m);
+  decide_wave_model_once(L, m, plan);
   return s0;
 }
 
@@ -219,7 +237,7 @@ void check_no_background_run(ScriptModel& m, const char* call) {
 // (at once, if that is before the checkpoint), as m:run{time = t} does.
 void run_loop(lua_State* L, ScriptModel& m, RunPlan plan) {
   World& w = m.world();
-  const long s0 = begin_stepping_call(L, m);
+  const long s0 = begin_stepping_call(L, m, plan);
   Stepping run(L, 1, m, std::move(plan), s0);
   const RunPlanView view = run.view(false);
   Progress progress(L, view.t_start, view.t_end >= 0 ? view.t_end : 0, s0, view.step_end >= 0 ? view.step_end : 0);
@@ -363,7 +381,7 @@ int m_settle(lua_State* L) {
     if (max_steps < 1) fail("m:settle: option 'max_steps' must be at least 1, got ", max_steps);
   }
   check_no_background_run(m, "m:settle");
-  begin_stepping_call(L, m);
+  begin_stepping_call(L, m, RunPlan{});
   World& w = m.world();
   lua_createtable(L, 0, 2);
   if (m.replay_mark) {  // dda run --restart: the checkpoint's model is past its settling

@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The dda maintainers
 // dda.Monitor: a material point whose fields are recorded every N steps into
 // memory and into <out>/<name>.csv (header line, one row per recorded step,
 // flushed row by row).

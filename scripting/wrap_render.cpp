@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The dda maintainers
 // Rendering from Lua (render/), when the renderer is built:
 //   m:frame{file = "t.png", field = "sigma_xx", ...}     one frame now
 //   m:frames{folder = "frames", every = 10, ...}         a numbered sequence during the run (dda.Frames)

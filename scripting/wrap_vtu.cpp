@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The dda maintainers
 // ParaView output from Lua (vtu.hpp):
 //   m:vtu{folder = "vtu", every = N | every_time = dt, prefix = "", contacts = true} → dda.Vtu
 //   vtu:write() → path         a frame now

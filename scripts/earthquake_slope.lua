@@ -1,3 +1,5 @@
+-- SPDX-License-Identifier: GPL-3.0-or-later
+-- SPDX-FileCopyrightText: 2026 The dda maintainers
 -- earthquake_slope.lua: a jointed rock slope shaken by a recorded earthquake.
 --
 -- Models:  a 20 m high rock slope (on 4 m of rock in front of its toe) with

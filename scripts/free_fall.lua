@@ -1,3 +1,5 @@
+-- SPDX-License-Identifier: GPL-3.0-or-later
+-- SPDX-FileCopyrightText: 2026 The dda maintainers
 -- free_fall.lua: one block falling freely under gravity.
 --
 -- Models:  a 1 m x 1 m block released from rest, gravity g = 9.81 m/s^2, no

@@ -1,3 +1,5 @@
+-- SPDX-License-Identifier: GPL-3.0-or-later
+-- SPDX-FileCopyrightText: 2026 The dda maintainers
 -- incline.lua: a block sliding down a 30 degree incline with Coulomb friction.
 --
 -- Models:  a fixed base whose top face is inclined at alpha = 30 deg and a

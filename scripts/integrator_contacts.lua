@@ -1,3 +1,5 @@
+-- SPDX-License-Identifier: GPL-3.0-or-later
+-- SPDX-FileCopyrightText: 2026 The dda maintainers
 -- integrator_contacts.lua: the time integrators on contacts that settle, hold
 -- and slide at a quasi-static step: the measurements behind the engine's
 -- default integrator (docs/time_integration.md, "The default, measured").

@@ -1,3 +1,5 @@
+-- SPDX-License-Identifier: GPL-3.0-or-later
+-- SPDX-FileCopyrightText: 2026 The dda maintainers
 -- jointed_slope.lua: a jointed rock slope settling and sliding under gravity.
 --
 -- Models:  a 20 m high slope (face at 60 deg, 10 m of ground in front of its
@@ -6,8 +8,8 @@
 --          cohesion or tension; the bottom edges fixed; gravity switched on at
 --          once. The bedding dips out of the face at 25 deg, so wedges on the
 --          face slide and tip past the corners of the blocks below: contacts
---          must follow vertices past the ends of edges (docs/contacts.md,
---          contact transfer).
+--          must follow vertices past the ends of edges
+--          (docs/contact_transfer.md).
 -- Run:     build/dda run scripts/jointed_slope.lua [--set t_end=5] [--set dt=1e-3] [--set law=shi]
 -- Writes:  prints, every 0.1 s, the largest block displacement, how many
 --          blocks moved more than 0.1 m, the deepest closed-contact penetration

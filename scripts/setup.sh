@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
 # SPDX-License-Identifier: GPL-3.0-or-later
+# SPDX-FileCopyrightText: 2026 The dda maintainers
 # Setup on Debian 12: install the packages that are missing (apt-get, as root
 # or through sudo), then configure and build into build/. The README's two
 # commands:

@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
 # SPDX-License-Identifier: GPL-3.0-or-later
+# SPDX-FileCopyrightText: 2026 The dda maintainers
 # cmake --install into a scratch prefix, then, from a folder of its own, the
 # installed dda: its version, two installed scenes (free_fall.lua, and
 # earthquake_slope.lua, which reads its record from the installed data/), the

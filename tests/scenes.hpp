@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The dda maintainers
 #pragma once
 // The C++ scenes, shared by the tests (engine, geometry, allocation) and the
 // C++ benchmarks (bench/). Lua scripts share scripts/bench/scenes.lua, which
@@ -119,7 +121,7 @@ inline BlockId add_fixed_block(World& w, const std::vector<Vec2>& outline, int r
   return b;
 }
 
-// Aligned corners that slide apart (docs/contacts.md): two blocks end to end
+// Aligned corners that slide apart (docs/contact_transfer.md): two blocks end to end
 // along a horizontal joint, a fixed base on the left (top at y = 0) and a free
 // 2 m × 1 m block B on the right (block 2, on a fixed foundation, 1 µm above
 // it), their tops on one line. Block A (block 3) on the base, its bottom edge

@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The dda maintainers
 #pragma once
 // Each block's own terms of the step's system: the diagonal block and the
 // right-hand side from its elasticity, initial stress, inertia and body
@@ -22,7 +24,7 @@ struct BlockTerms {
 // on the strains, inertia (the time scheme), gravity; sizes `terms`.
 // strain_damping β (s, 0: none): the strains' Kelvin–Voigt damping,
 // σ = E(ε + β·ε̇), a damping ratio βω/2 at angular frequency ω
-// (docs/contacts.md: it keeps a sliding block from chattering).
+// (docs/friction_flutter.md: it keeps a sliding block from chattering).
 void assemble_block_terms(const Blocks& blocks, std::span<const Mat3> elastic, const Vec2& gravity,
                           double strain_damping, const TimeScheme& scheme, BlockTerms& terms);
 

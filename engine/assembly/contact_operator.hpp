@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The dda maintainers
 #pragma once
 // The DDA system matrix without its off-diagonal blocks stored: the diagonal
 // block of each rock block (elasticity, inertia, loads, and the springs of

@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The dda maintainers
 #pragma once
 // The Assemble stage of each open-close iteration: each block row's diagonal
 // block and right-hand side, its own terms (block_terms.hpp) plus what its

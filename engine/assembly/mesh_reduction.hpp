@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The dda maintainers
 #pragma once
 // The step's system where blocks are meshed (block/mesh.hpp), solved for the
 // mesh nodes. The system is assembled as always, one row of six per block,

@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The dda maintainers
 #pragma once
 // The blocks' state in flat arrays indexed by block id (Box2D's b2BodyState
 // against b2Body): what every step reads and writes first, then what only
@@ -90,6 +92,12 @@ struct MaterialPoint {
 // exact for a first-order block, for an element of a meshed block as
 // `mesh_mass` says (MeshMass, block/time_scheme.hpp).
 IntegratedTt block_tt(const Blocks& blocks, std::size_t b, MeshMass mesh_mass);
+
+// Appends a counter-clockwise polygon as a first-order block at rest (its
+// mass from `density`); the mesh arrays grow with it when they exist or
+// `with_mesh_arrays`. Returns its id. (No checks: World's.)
+BlockId append_block(Blocks& blocks, std::span<const Vec2> vertices, int material, double density,
+                     std::span<const int> edge_joints, std::span<const EdgeTag> edge_tags, bool with_mesh_arrays);
 
 // Throws dda::Error, naming `what`, unless every edge exists (and there is one).
 void check_edges(const Blocks& blocks, const std::vector<EdgeRef>& edges, const std::string& what);

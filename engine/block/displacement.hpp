@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The dda maintainers
 #pragma once
 // The first-order DDA displacement function (Shi 1988). A block has six
 // unknowns D = (u0, v0, r0, εx, εy, γxy) about its centroid (x0, y0); the

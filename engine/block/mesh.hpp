@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The dda maintainers
 #pragma once
 // Meshed (deformable) blocks: a block given a mesh size is cut into
 // constant-strain triangles (CST) whose corners are shared mesh nodes.

@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The dda maintainers
 // The mesher for concave blocks: CGAL's constrained Delaunay triangulation
 // refined by Ruppert's algorithm (Delaunay_mesher_2). The one file of the
 // engine that includes CGAL (engine/CMakeLists.txt compiles it apart, with

@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The dda maintainers
 #pragma once
 // The blocks under a step's solution D (6 unknowns per block): the checks the
 // step control needs before accepting it, and the move once it is accepted.

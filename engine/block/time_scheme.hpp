@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The dda maintainers
 #pragma once
 // How a block's inertia, dashpot velocity, warm start and end-of-step motion
 // follow from its step displacement d: the one place that knows the time
@@ -46,7 +48,9 @@
 
 namespace dda {
 
-enum class Integrator { Shi, Newmark, GeneralizedAlpha };
+// Auto (the controls' default) is resolved before a step: the wave scheme
+// where the wave model is active, else Shi (world/wave_model.hpp).
+enum class Integrator { Shi, Newmark, GeneralizedAlpha, Auto };
 
 // The mass of an element of a meshed block (block/mesh.hpp), the control
 // mesh_mass; first-order blocks always have their consistent mass. An
@@ -65,7 +69,10 @@ enum class Integrator { Shi, Newmark, GeneralizedAlpha };
 //               leading dispersion error of linear elements in 1-D (the
 //               consistent mass's short waves run faster than c, the lumped
 //               one's slower). docs/meshed_blocks.md has what each does.
-enum class MeshMass { Consistent, Lumped, Mixed };
+//   Auto (the controls' default), resolved before a step: the wave scheme's
+//               where the wave model is active, else Consistent
+//               (world/wave_model.hpp).
+enum class MeshMass { Consistent, Lumped, Mixed, Auto };
 
 // The factor on an element's second moments in its ∫TᵀT (above).
 inline double element_moment_factor(MeshMass m) {

@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The dda maintainers
 #include "boundary/boundaries.hpp"
 
 #include <algorithm>
@@ -15,18 +17,27 @@ namespace dda {
 int Boundaries::add_fixed_point(BlockId b, const Vec2& point) {
   if (!point.allFinite()) throw Error(msg("fixed point on block ", b, ": point is not finite"));
   fixed_points_.push_back({b, point, point});
+  fixed_from_edges_.push_back(0);
   return static_cast<int>(fixed_points_.size()) - 1;
 }
 
 void Boundaries::fix_edges(const Blocks& blocks, const std::vector<EdgeRef>& edges) {
   check_edges(blocks, edges, "fixed boundary");
+  fixed_edges_.push_back(edges);
+  add_fixed_points_on(blocks, edges);
+}
+
+void Boundaries::add_fixed_points_on(const Blocks& blocks, const std::vector<EdgeRef>& edges) {
   for (const EdgeRef& e : edges) {
     const auto v = blocks.outline(e.block);
     for (int end : {e.edge, (e.edge + 1) % static_cast<int>(v.size())}) {
       // One fixed point per block vertex, however many of its edges are fixed.
       bool present = false;
       for (const FixedPoint& f : fixed_points_) present |= f.block == e.block && f.origin == v[end];
-      if (!present) add_fixed_point(e.block, v[end]);
+      if (!present) {
+        add_fixed_point(e.block, v[end]);
+        fixed_from_edges_.back() = 1;
+      }
     }
   }
 }
@@ -42,6 +53,54 @@ int Boundaries::add_displacement_target(const Blocks& blocks, BlockId b, const V
   t.direction = direction.norm() > 0 ? Vec2(direction.normalized()) : Vec2(Vec2::Zero());
   targets_.push_back(t);
   return static_cast<int>(targets_.size()) - 1;
+}
+
+std::vector<Boundaries::TargetPoint> Boundaries::edge_target_points(const Blocks& blocks,
+                                                                    const std::vector<EdgeRef>& edges, bool directed,
+                                                                    const Vec2& direction) const {
+  std::vector<TargetPoint> points;
+  std::vector<std::pair<BlockId, int>> vertices;  // (block, vertex) of each point
+  for (const EdgeRef& e : edges) {
+    const auto v = blocks.outline(e.block);
+    const int n = static_cast<int>(v.size());
+    const Vec2 d = (v[(e.edge + 1) % n] - v[e.edge]).normalized();
+    const Vec2 inward(-d.y(), d.x());
+    for (int k : {e.edge, (e.edge + 1) % n}) {
+      const auto key = std::make_pair(e.block, k);
+      const auto at = std::find(vertices.begin(), vertices.end(), key);
+      if (at == vertices.end()) {
+        vertices.push_back(key);
+        points.push_back({e.block, v[k], inward});
+      } else {
+        points[at - vertices.begin()].direction += inward;
+      }
+    }
+  }
+  for (TargetPoint& p : points) {
+    const Vec2 n = p.direction;
+    p.direction = !directed              ? Vec2(Vec2::Zero())
+                  : direction.norm() > 0 ? Vec2(direction.normalized())
+                  : n.norm() > 0         ? Vec2(n.normalized())
+                                         : Vec2(Vec2::UnitX());
+  }
+  return points;
+}
+
+std::vector<int> Boundaries::add_edge_targets(const Blocks& blocks, const std::vector<EdgeRef>& edges, bool directed,
+                                              const Vec2& direction) {
+  check_edges(blocks, edges, "edge targets");
+  if (!direction.allFinite()) throw Error("edge targets: direction is not finite");
+  EdgeTargets set{edges, directed, direction, {}};
+  for (const TargetPoint& p : edge_target_points(blocks, edges, directed, direction))
+    set.ids.push_back(add_displacement_target(blocks, p.block, p.point, p.direction));
+  edge_targets_.push_back(set);
+  return set.ids;
+}
+
+std::vector<int> Boundaries::edge_target_ids(int id) const {
+  for (const EdgeTargets& set : edge_targets_)
+    if (std::find(set.ids.begin(), set.ids.end(), id) != set.ids.end()) return set.ids;
+  return {id};
 }
 
 const Boundaries::DisplacementTarget& Boundaries::target(int id) const {
@@ -81,28 +140,19 @@ Vec2 Boundaries::target_point_displacement(int id) const { return target(id).poi
 Vec2 Boundaries::target_value(int id) const { return target(id).target; }
 
 int Boundaries::add_viscous_boundary(const Blocks& blocks, const std::vector<RockMaterial>& rocks,
-                                     const std::vector<EdgeRef>& edges, const RockMaterial* medium) {
+                                     const std::vector<EdgeRef>& edges, int medium) {
   const int id = static_cast<int>(boundaries_.size());
   check_edges(blocks, edges, msg("viscous boundary ", id));
-  const int first = static_cast<int>(boundary_points_.size());
-  for (const EdgeRef& e : edges) {
-    const auto v = blocks.outline(e.block);
-    const Vec2 a = v[e.edge], b = v[(e.edge + 1) % v.size()];
-    const double l = (b - a).norm();
-    const Vec2 t = (b - a) / l, n(t.y(), -t.x());  // outward normal of a counter-clockwise outline
-    const RockMaterial& rock = medium ? *medium : rocks[blocks.material[e.block]];
-    // Eq. 6: C_P from the bulk and shear moduli.
-    const double g = rock.youngs / (2 * (1 + rock.poisson)), k = rock.youngs / (3 * (1 - 2 * rock.poisson));
-    const double cp = std::sqrt((k + 4 * g / 3) / rock.density), cs = std::sqrt(g / rock.density);
-    // Eq. 12: C = C_P n nᵀ + C_S s sᵀ; each end carries half the edge.
-    const Eigen::Matrix2d c = 0.5 * l * rock.density * (cp * n * n.transpose() + cs * t * t.transpose());
-    for (const Vec2& p : {a, b}) boundary_points_.push_back({id, e.block, p, p, c, 0.0, Vec2::Zero()});
-  }
-  add_boundary(BoundaryKind::Viscous, first);
-  const RockMaterial& rock = medium ? *medium : rocks[blocks.material[edges.front().block]];
-  boundaries_.back().zs = rock.density * s_wave_speed(rock);
+  Boundary b;
+  b.kind = BoundaryKind::Viscous;
+  b.edges = edges;
+  b.medium = medium;
+  const RockMaterial& rock = medium >= 0 ? rocks[medium] : rocks[blocks.material[edges.front().block]];
+  b.zs = rock.density * s_wave_speed(rock);
   const double g = rock.youngs / (2 * (1 + rock.poisson)), k = rock.youngs / (3 * (1 - 2 * rock.poisson));
-  boundaries_.back().zp = std::sqrt((k + 4 * g / 3) * rock.density);
+  b.zp = std::sqrt((k + 4 * g / 3) * rock.density);
+  boundaries_.push_back(std::move(b));
+  make_points(id, blocks, rocks, PlaneMode::Stress);
   return id;
 }
 
@@ -111,15 +161,13 @@ int Boundaries::add_spring_boundary(const Blocks& blocks, const std::vector<Edge
   const int id = static_cast<int>(boundaries_.size());
   check_edges(blocks, edges, msg("spring boundary ", id));
   if (!std::isfinite(p) || p <= 0) throw Error(msg("spring boundary ", id, ": stiffness p must be positive, got ", p));
-  const int first = static_cast<int>(boundary_points_.size());
-  for (const EdgeRef& e : edges) {
-    const auto v = blocks.outline(e.block);
-    const Vec2 a = v[e.edge], b = v[(e.edge + 1) % v.size()];
-    const double k = per_length ? p * (b - a).norm() : p;
-    for (const Vec2& pt : {a, b})
-      boundary_points_.push_back({id, e.block, pt, pt, Eigen::Matrix2d::Zero(), k, Vec2::Zero()});
-  }
-  add_boundary(BoundaryKind::Spring, first);
+  Boundary b;
+  b.kind = BoundaryKind::Spring;
+  b.edges = edges;
+  b.p = p;
+  b.per_length = per_length;
+  boundaries_.push_back(std::move(b));
+  make_points(id, blocks, {}, PlaneMode::Stress);
   return id;
 }
 
@@ -141,61 +189,103 @@ int Boundaries::add_free_field(const Blocks& blocks, const std::vector<RockMater
   if (base < 0 || base >= id || boundaries_[base].kind != BoundaryKind::Viscous || !boundaries_[base].incident)
     throw Error(msg(what, ": base ", base,
                     " must be a compliant base (a viscous boundary with an incident wave) made before it"));
-  // The side's edges, bottom to top; each vertical, one outward normal.
-  struct SideEdge {
-    EdgeRef edge;
-    Vec2 low, high;
-  };
-  std::vector<SideEdge> edges;
-  double normal_x = 0;
-  for (const EdgeRef& e : side) {
-    const auto v = blocks.outline(e.block);
-    const Vec2 a = v[e.edge], b = v[(e.edge + 1) % v.size()];
-    const double l = (b - a).norm();
-    if (std::abs(b.x() - a.x()) > 1e-6 * l)
-      throw Error(msg(what, ": edge ", e.edge, " of block ", e.block, " is not vertical (a free-field side must be)"));
-    const double nx = b.y() > a.y() ? 1.0 : -1.0;  // outward normal (t.y, −t.x) of a counter-clockwise outline
-    if (normal_x != 0 && nx != normal_x)
-      throw Error(msg(what, ": the edges face both ways; give the left and the right side as two free fields"));
-    normal_x = nx;
-    edges.push_back({e, a.y() < b.y() ? a : b, a.y() < b.y() ? b : a});
+  Boundary b;
+  b.kind = BoundaryKind::FreeField;
+  b.edges = side;
+  b.base = base;
+  boundaries_.push_back(std::move(b));
+  try {
+    make_points(id, blocks, rocks, plane);
+  } catch (...) {
+    boundaries_.pop_back();
+    throw;
   }
-  std::sort(edges.begin(), edges.end(), [](const SideEdge& p, const SideEdge& q) { return p.low.y() < q.low.y(); });
-  std::vector<FreeFieldColumn::Segment> segments;
-  for (std::size_t i = 0; i < edges.size(); ++i) {
-    const double l = edges[i].high.y() - edges[i].low.y();
-    if (i > 0 && std::abs(edges[i].low.y() - edges[i - 1].high.y()) > 1e-6 * l)
-      throw Error(msg(what, ": the side has a gap or an overlap at y = ", edges[i - 1].high.y(),
-                      " (give every edge of the side, once)"));
-    const RockMaterial& rock = rocks[blocks.material[edges[i].edge.block]];
-    const Mat3 e = elastic_matrix(rock, plane);
-    segments.push_back({l, rock.density, e(2, 2), e(0, 1)});
-  }
-  const Boundary& b = boundaries_[base];
-  columns_.emplace_back(edges.front().low.y(), std::move(segments), b.zs, b.zp, b.incident_vx, b.incident_vy);
-  const int first = static_cast<int>(boundary_points_.size());
-  for (std::size_t i = 0; i < edges.size(); ++i) {
-    const EdgeRef& e = edges[i].edge;
-    const RockMaterial& rock = rocks[blocks.material[e.block]];
-    const double l = edges[i].high.y() - edges[i].low.y();
-    const double g = rock.youngs / (2 * (1 + rock.poisson)), k = rock.youngs / (3 * (1 - 2 * rock.poisson));
-    const double cp = std::sqrt((k + 4 * g / 3) / rock.density), cs = std::sqrt(g / rock.density);
-    Eigen::Matrix2d c = Eigen::Matrix2d::Zero();
-    c(0, 0) = 0.5 * l * rock.density * cp;
-    c(1, 1) = 0.5 * l * rock.density * cs;
-    for (int end = 0; end < 2; ++end) {
-      BoundaryPoint p{id, e.block, end == 0 ? edges[i].low : edges[i].high, {}, c, 0.0, Vec2::Zero()};
-      p.origin = p.point;
-      p.node = static_cast<int>(i) + end;
-      p.segment = static_cast<int>(i);
-      p.half_length = 0.5 * l;
-      p.normal_x = normal_x;
-      boundary_points_.push_back(p);
+  return id;
+}
+
+void Boundaries::make_points(int id, const Blocks& blocks, const std::vector<RockMaterial>& rocks, PlaneMode plane) {
+  Boundary& bd = boundaries_[id];
+  bd.first = static_cast<int>(boundary_points_.size());
+  if (bd.kind == BoundaryKind::Viscous) {
+    for (const EdgeRef& e : bd.edges) {
+      const auto v = blocks.outline(e.block);
+      const Vec2 a = v[e.edge], b = v[(e.edge + 1) % v.size()];
+      const double l = (b - a).norm();
+      const Vec2 t = (b - a) / l, n(t.y(), -t.x());  // outward normal of a counter-clockwise outline
+      const RockMaterial& rock = bd.medium >= 0 ? rocks[bd.medium] : rocks[blocks.material[e.block]];
+      // Eq. 6: C_P from the bulk and shear moduli.
+      const double g = rock.youngs / (2 * (1 + rock.poisson)), k = rock.youngs / (3 * (1 - 2 * rock.poisson));
+      const double cp = std::sqrt((k + 4 * g / 3) / rock.density), cs = std::sqrt(g / rock.density);
+      // Eq. 12: C = C_P n nᵀ + C_S s sᵀ; each end carries half the edge.
+      const Eigen::Matrix2d c = 0.5 * l * rock.density * (cp * n * n.transpose() + cs * t * t.transpose());
+      for (const Vec2& p : {a, b}) boundary_points_.push_back({id, e.block, p, p, c, 0.0, Vec2::Zero()});
+    }
+  } else if (bd.kind == BoundaryKind::Spring) {
+    for (const EdgeRef& e : bd.edges) {
+      const auto v = blocks.outline(e.block);
+      const Vec2 a = v[e.edge], b = v[(e.edge + 1) % v.size()];
+      const double k = bd.per_length ? bd.p * (b - a).norm() : bd.p;
+      for (const Vec2& pt : {a, b})
+        boundary_points_.push_back({id, e.block, pt, pt, Eigen::Matrix2d::Zero(), k, Vec2::Zero()});
+    }
+  } else {
+    const std::string what = msg("free-field boundary ", id);
+    // The side's edges, bottom to top; each vertical, one outward normal.
+    struct SideEdge {
+      EdgeRef edge;
+      Vec2 low, high;
+    };
+    std::vector<SideEdge> edges;
+    double normal_x = 0;
+    for (const EdgeRef& e : bd.edges) {
+      const auto v = blocks.outline(e.block);
+      const Vec2 a = v[e.edge], b = v[(e.edge + 1) % v.size()];
+      const double l = (b - a).norm();
+      if (std::abs(b.x() - a.x()) > 1e-6 * l)
+        throw Error(
+            msg(what, ": edge ", e.edge, " of block ", e.block, " is not vertical (a free-field side must be)"));
+      const double nx = b.y() > a.y() ? 1.0 : -1.0;  // outward normal (t.y, −t.x) of a counter-clockwise outline
+      if (normal_x != 0 && nx != normal_x)
+        throw Error(msg(what, ": the edges face both ways; give the left and the right side as two free fields"));
+      normal_x = nx;
+      edges.push_back({e, a.y() < b.y() ? a : b, a.y() < b.y() ? b : a});
+    }
+    std::sort(edges.begin(), edges.end(), [](const SideEdge& p, const SideEdge& q) { return p.low.y() < q.low.y(); });
+    std::vector<FreeFieldColumn::Segment> segments;
+    for (std::size_t i = 0; i < edges.size(); ++i) {
+      const double l = edges[i].high.y() - edges[i].low.y();
+      if (i > 0 && std::abs(edges[i].low.y() - edges[i - 1].high.y()) > 1e-6 * l)
+        throw Error(msg(what, ": the side has a gap or an overlap at y = ", edges[i - 1].high.y(),
+                        " (give every edge of the side, once)"));
+      const RockMaterial& rock = rocks[blocks.material[edges[i].edge.block]];
+      const Mat3 e = elastic_matrix(rock, plane);
+      segments.push_back({l, rock.density, e(2, 2), e(0, 1)});
+    }
+    const Boundary& base = boundaries_[bd.base];
+    columns_.emplace_back(edges.front().low.y(), std::move(segments), base.zs, base.zp, base.incident_vx,
+                          base.incident_vy);
+    bd.column = static_cast<int>(columns_.size()) - 1;
+    for (std::size_t i = 0; i < edges.size(); ++i) {
+      const EdgeRef& e = edges[i].edge;
+      const RockMaterial& rock = rocks[blocks.material[e.block]];
+      const double l = edges[i].high.y() - edges[i].low.y();
+      const double g = rock.youngs / (2 * (1 + rock.poisson)), k = rock.youngs / (3 * (1 - 2 * rock.poisson));
+      const double cp = std::sqrt((k + 4 * g / 3) / rock.density), cs = std::sqrt(g / rock.density);
+      Eigen::Matrix2d c = Eigen::Matrix2d::Zero();
+      c(0, 0) = 0.5 * l * rock.density * cp;
+      c(1, 1) = 0.5 * l * rock.density * cs;
+      for (int end = 0; end < 2; ++end) {
+        BoundaryPoint p{id, e.block, end == 0 ? edges[i].low : edges[i].high, {}, c, 0.0, Vec2::Zero()};
+        p.origin = p.point;
+        p.node = static_cast<int>(i) + end;
+        p.segment = static_cast<int>(i);
+        p.half_length = 0.5 * l;
+        p.normal_x = normal_x;
+        boundary_points_.push_back(p);
+      }
     }
   }
-  add_boundary(BoundaryKind::FreeField, first);
-  boundaries_.back().column = static_cast<int>(columns_.size()) - 1;
-  return id;
+  bd.count = static_cast<int>(boundary_points_.size()) - bd.first;
 }
 
 Vec2 Boundaries::free_field_velocity(int id, double y) const {
@@ -211,14 +301,6 @@ Vec2 Boundaries::free_field_load(const BoundaryPoint& p) const {
   const Vec2 v_ff(column.vx(p.node), column.vy(p.node));
   const Vec2 traction = p.normal_x * Vec2(column.lateral_stress(p.segment), column.shear_stress(p.segment));
   return p.c * v_ff + p.half_length * traction;
-}
-
-void Boundaries::add_boundary(BoundaryKind kind, int first) {
-  Boundary b;
-  b.kind = kind;
-  b.first = first;
-  b.count = static_cast<int>(boundary_points_.size()) - first;
-  boundaries_.push_back(std::move(b));
 }
 
 std::vector<Vec2> Boundaries::boundary_point_forces(int id) const {
@@ -327,6 +409,76 @@ std::vector<char> Boundaries::held_blocks(std::size_t count) const {
   for (const FixedPoint& f : fixed_points_) held[f.block] = 1;
   for (const DisplacementTarget& t : targets_) held[t.block] = 1;
   return held;
+}
+
+std::vector<LoadSignal> Boundaries::dynamic_signals() const {
+  std::vector<LoadSignal> signals;
+  for (std::size_t i = 0; i < targets_.size(); ++i) {
+    const DisplacementTarget& t = targets_[i];
+    if (t.mode == DisplacementTarget::Fixed) continue;
+    const SignalKind kind = t.mode == DisplacementTarget::Displacement ? SignalKind::Displacement
+                            : t.mode == DisplacementTarget::Velocity   ? SignalKind::Velocity
+                                                                       : SignalKind::Acceleration;
+    signals.push_back({t.history.points(), kind, msg("displacement target ", i)});
+  }
+  for (std::size_t i = 0; i < boundaries_.size(); ++i)
+    if (boundaries_[i].incident) {
+      signals.push_back({boundaries_[i].incident_vx.points(), SignalKind::Velocity, msg("incident wave ", i, " (x)")});
+      signals.push_back({boundaries_[i].incident_vy.points(), SignalKind::Velocity, msg("incident wave ", i, " (y)")});
+    }
+  return signals;
+}
+
+void Boundaries::remesh(const Remeshing& r, const std::vector<RockMaterial>& rocks, PlaneMode plane) {
+  const Blocks& blocks = *r.blocks;
+  // Fixed points: those of fixed edges made again on the edges there now.
+  std::vector<FixedPoint> single;
+  for (std::size_t i = 0; i < fixed_points_.size(); ++i)
+    if (!fixed_from_edges_[i]) {
+      FixedPoint f = fixed_points_[i];
+      f.block = r.element_at(f.block, f.origin);
+      single.push_back(f);
+    }
+  fixed_points_ = std::move(single);
+  fixed_from_edges_.assign(fixed_points_.size(), 0);
+  for (std::vector<EdgeRef>& edges : fixed_edges_) {
+    edges = r.edges(edges);
+    add_fixed_points_on(blocks, edges);
+  }
+  // Targets: each to the element under it; a set made on edges gains the
+  // points along them (the input of its first target: all of a set's
+  // targets are driven alike).
+  for (DisplacementTarget& t : targets_) t.block = r.element_at(t.block, t.origin);
+  for (EdgeTargets& set : edge_targets_) {
+    set.edges = r.edges(set.edges);
+    const DisplacementTarget input = targets_[set.ids.front()];
+    std::vector<int> ids;
+    for (const TargetPoint& p : edge_target_points(blocks, set.edges, set.directed, set.direction)) {
+      int id = -1;
+      for (int old : set.ids)
+        if ((targets_[old].origin - p.point).norm() <= 1e-9 * (1 + p.point.norm())) id = old;
+      if (id < 0) {
+        DisplacementTarget t = input;
+        id = static_cast<int>(targets_.size());
+        targets_.push_back(t);
+      }
+      DisplacementTarget& t = targets_[id];
+      t.block = p.block;
+      t.point = t.origin = p.point;
+      t.direction = p.direction;
+      if (t.mode == DisplacementTarget::Fixed && input.direction.norm() > 0)
+        t.target = input.target.dot(input.direction) * t.direction;
+      ids.push_back(id);
+    }
+    set.ids = std::move(ids);
+  }
+  // Viscous, spring and free-field boundaries: their points made again.
+  boundary_points_.clear();
+  columns_.clear();
+  for (std::size_t id = 0; id < boundaries_.size(); ++id) {
+    boundaries_[id].edges = r.edges(boundaries_[id].edges);
+    make_points(static_cast<int>(id), blocks, rocks, plane);
+  }
 }
 
 void Boundaries::update(const Blocks& blocks, const VecX& d_all, const TimeScheme& scheme) {

@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The dda maintainers
 #pragma once
 // Boundary conditions at material points of the blocks: fixed points,
 // prescribed displacements (the paper's DHI), viscous boundaries (VBC) and
@@ -8,10 +10,12 @@
 
 #include "assembly/block_terms.hpp"
 #include "block/blocks.hpp"
+#include "block/remeshing.hpp"
 #include "block/time_scheme.hpp"
 #include "boundary/free_field.hpp"
 #include "core/material.hpp"
 #include "loading/history.hpp"
+#include "loading/load_frequency.hpp"
 
 namespace dda {
 
@@ -30,6 +34,17 @@ class Boundaries {
   // DHI: a stiff spring pulls the material point to start + target; with a
   // direction (normalised) along it only, the target a magnitude along it.
   int add_displacement_target(const Blocks& blocks, BlockId b, const Vec2& point, const Vec2& direction);
+  // Targets at the end points of edges, once per block vertex: directed,
+  // along `direction` when it is not zero, else along the edges' inward
+  // normal (the mean of the normals where two edges of the set meet); not
+  // directed, in both components. Returns the targets' ids; the edges are
+  // kept, so that the set follows its edges when the blocks are meshed
+  // (remesh).
+  std::vector<int> add_edge_targets(const Blocks& blocks, const std::vector<EdgeRef>& edges, bool directed,
+                                    const Vec2& direction);
+  // The ids of the targets of the add_edge_targets call that made target
+  // `id` (all of them, as they are after a remesh); {id} for another target.
+  std::vector<int> edge_target_ids(int id) const;
   void set_target_displacement(int id, const Vec2& target);            // along a direction: target.x() is the magnitude
   void set_target_history(int id, History displacement);               // magnitude along the direction
   void set_target_velocity_history(int id, History velocity);          // integrated to displacement
@@ -43,7 +58,7 @@ class Boundaries {
   // boundary takes ρ, C_P and C_S from each edge's block, or from `medium`
   // when given (the half-space below a compliant base).
   int add_viscous_boundary(const Blocks& blocks, const std::vector<RockMaterial>& rocks,
-                           const std::vector<EdgeRef>& edges, const RockMaterial* medium = nullptr);
+                           const std::vector<EdgeRef>& edges, int medium = -1);
   // A compliant (quiet) base: the viscous boundary also carries the stress of
   // a wave arriving from outside, particle velocity v_in(t) = (vx, vy): each
   // point's force becomes C·(2·v_in − v), i.e. traction 2ρC·v_in less the
@@ -92,10 +107,20 @@ class Boundaries {
   // holds it (the landing law's immovable blocks, contact/landing.hpp).
   std::vector<char> held_blocks(std::size_t count) const;
 
+  // The prescribed motions and incident waves, as wave signals
+  // (loading/load_frequency.hpp).
+  std::vector<LoadSignal> dynamic_signals() const;
+  // After first-order blocks were meshed in place (before the first step):
+  // points go to the element under them, and what was given on edges is
+  // made again on the edges that now stand there (fixed edges, edge
+  // targets, viscous, spring and free-field boundaries); every id stays.
+  void remesh(const Remeshing& r, const std::vector<RockMaterial>& rocks, PlaneMode plane);
+
   // What a checkpoint holds (core/archive.hpp): every point with its state.
   template <class Archive>
   void fields(Archive& ar) {
-    ar(fixed_points_, targets_, boundary_points_, boundaries_, columns_);
+    ar(fixed_points_, fixed_from_edges_, fixed_edges_, targets_, edge_targets_, boundary_points_, boundaries_,
+       columns_);
   }
   // Read from a checkpoint: every block, point, boundary, column and node in
   // range (core/load_check.hpp).
@@ -143,19 +168,51 @@ class Boundaries {
     Vec2 incident_velocity = Vec2::Zero();  // at the end of the last step assembled
     double zs = 0, zp = 0;                  // viscous: impedances ρC_S, ρC_P of its medium
     int column = -1;                        // free field: its column in columns_
+    // What it was made from (its points are made again from these when the
+    // blocks are meshed): its edges; viscous: the medium (-1: each edge's
+    // block); spring: p and per_length; free field: the base.
+    std::vector<EdgeRef> edges;
+    int medium = -1, base = -1;
+    double p = 0;
+    bool per_length = true;
     template <class Archive>
     void fields(Archive& ar) {
-      ar(kind, first, count, incident, incident_vx, incident_vy, incident_velocity, zs, zp, column);
+      ar(kind, first, count, incident, incident_vx, incident_vy, incident_velocity, zs, zp, column, edges, medium, base,
+         p, per_length);
+    }
+  };
+  // A set of targets made on edges (add_edge_targets).
+  struct EdgeTargets {
+    std::vector<EdgeRef> edges;
+    bool directed = true;
+    Vec2 direction;  // zero: the edges' inward normals
+    std::vector<int> ids;
+    template <class Archive>
+    void fields(Archive& ar) {
+      ar(edges, directed, direction, ids);
     }
   };
   // The force of a free-field point at the trial state: C·(v_ff − v1) + traction.
   Vec2 free_field_load(const BoundaryPoint& p) const;
-  void add_boundary(BoundaryKind kind, int first);  // of the points from `first` on
+  // The points of boundary `id` (boundaries_[id], its edges) appended to
+  // boundary_points_ (and, for a free field, its column to columns_).
+  void make_points(int id, const Blocks& blocks, const std::vector<RockMaterial>& rocks, PlaneMode plane);
+  void add_fixed_points_on(const Blocks& blocks, const std::vector<EdgeRef>& edges);
+  // (block, point, direction) of the targets on edges, in order.
+  struct TargetPoint {
+    BlockId block;
+    Vec2 point, direction;
+  };
+  std::vector<TargetPoint> edge_target_points(const Blocks& blocks, const std::vector<EdgeRef>& edges, bool directed,
+                                              const Vec2& direction) const;
   const DisplacementTarget& target(int id) const;
   DisplacementTarget& target(int id) { return const_cast<DisplacementTarget&>(std::as_const(*this).target(id)); }
 
   std::vector<FixedPoint> fixed_points_;
+  std::vector<char> fixed_from_edges_;             // per fixed point: made by fix_edges
+  std::vector<std::vector<EdgeRef>> fixed_edges_;  // each fix_edges call's edges
   std::vector<DisplacementTarget> targets_;
+  std::vector<EdgeTargets> edge_targets_;
   std::vector<BoundaryPoint> boundary_points_;
   std::vector<Boundary> boundaries_;
   std::vector<FreeFieldColumn> columns_;

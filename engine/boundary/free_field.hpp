@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The dda maintainers
 #pragma once
 // A free-field column (UDEC's and FLAC's free-field boundary, for vertically
 // incident waves): the 1-D response of the ground beside a model's vertical

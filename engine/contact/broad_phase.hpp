@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The dda maintainers
 #pragma once
 // Broad phase: the block pairs whose bounding boxes, grown by the contact
 // search range, overlap. A uniform grid (cell = largest ordinary block), so

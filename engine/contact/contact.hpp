@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The dda maintainers
 #pragma once
 // A vertex-edge contact between two blocks, with the state every contact law
 // keeps and reports from step to step (open / sliding / locked, intact joint

@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The dda maintainers
 #include "contact/contact_detection.hpp"
 
 #include <algorithm>
@@ -54,7 +56,7 @@ bool ContactDetection::detect(const Blocks& blocks, double range, std::vector<Co
   };
   // A vertex gone round the corner of its contact's edge, or slid past its
   // end, is searched again: it belongs to the next edge there or to a
-  // vertex-vertex contact (contact transfer, docs/contacts.md). So are
+  // vertex-vertex contact (docs/contact_transfer.md). So are
   // aligned edges slid past each other's corner: their contacts are missing
   // or too weak (narrow_phase.hpp). The watch tests only what can have
   // changed since its last test (transfer_watch.hpp).

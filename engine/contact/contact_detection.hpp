@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The dda maintainers
 #pragma once
 // The DetectContacts stage: which vertex-edge pairs are contacts this step,
 // with the state each carries over, and their linearisation.
@@ -12,7 +14,7 @@
 // each other's corner (AlignedEdges, narrow_phase.hpp): the search left them
 // without a contact, or with one scaled by their short overlap, and a
 // vertex would otherwise sink unresisted into the other block's edge
-// (docs/contacts.md); both are tested only where the blocks have moved
+// (docs/contact_transfer.md); both are tested only where the blocks have moved
 // enough to change the answer (transfer_watch.hpp). The linearisation is
 // refreshed every step.
 #include <span>

@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The dda maintainers
 #pragma once
 // The linearised penetration and shear of a vertex-edge contact (Shi 1988),
 // at the start of a step: what every contact law decides on and what its

@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The dda maintainers
 #pragma once
 // The contact model: one contact law behind one interface (as LAMMPS
 // GRANULAR's sub-models, each declaring its per-contact history, and Kratos's

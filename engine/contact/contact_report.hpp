@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The dda maintainers
 #pragma once
 // What a step that cannot be completed says about its contacts: the deepest
 // one, named as a user finds it (m:contacts()), and a cure that is true for

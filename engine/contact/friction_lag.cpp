@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The dda maintainers
 #include "contact/friction_lag.hpp"
 
 #include <limits>
@@ -11,7 +13,7 @@ namespace {
 // interface, whose strength is the mean of the N it carries since it closed
 // (lag_weight). 60° on 45° with gravity on at once at Δt = 1e-5 s chatters
 // with every re-closing a new interface (or at 0.1 t_r), and two landings
-// that rock move at 1 t_r (docs/contacts.md, Tried and not kept).
+// that rock move at 1 t_r (docs/friction_flutter.md, Tried and not kept).
 constexpr double kSameInterface = 0.3;
 }  // namespace
 

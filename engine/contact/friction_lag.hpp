@@ -1,6 +1,8 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The dda maintainers
 #pragma once
 // Friction that lags the normal force (the control friction_lag, t_r in
-// seconds; 0: none; docs/contacts.md): the normal force N_f a contact's
+// seconds; 0: none; docs/friction_flutter.md): the normal force N_f a contact's
 // friction strength acts with follows N as the simplified Prakash–Clifton
 // law over the interface's own life. Both penalty laws apply it
 // (penalty_contacts.hpp), each contact's memory (FrictionMemory) their
@@ -67,7 +69,7 @@ inline LaggedFriction lagged_friction(const FrictionMemory& m, ContactState stat
 // force at the step's end is n (compression positive): max(0, n), or with
 // friction_lag the lagged N_f = N_f0 + w·(max(0, n) − N_f0), w from
 // lag_weight above (the simplified Prakash–Clifton law, Ranjith and Rice
-// 2001, over the interface's own life): stable for every Δt/t_r, today's
+// 2001, over the interface's own life): stable for every Δt/t_r, the unlagged
 // max(0, n) once Δt ≫ t_r (w = 1), and N itself in steady sliding. Every
 // friction decision and force takes its N from here.
 inline double friction_normal(const LaggedFriction& lag, double n) {

@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The dda maintainers
 #include "contact/holding_law.hpp"
 
 #include <algorithm>
@@ -45,7 +47,7 @@ constexpr int kMaxGrossPasses = 30;
 // step's displacements, yet a translation every block shares (a shaken base
 // carrying its blocks, a model moving as a whole) is no motion of any contact
 // and drops out. With a block held fixed it is at least the largest
-// translation (what the band was before: docs/contacts.md).
+// translation (the band tried and not kept: docs/contacts.md).
 double translation_spread(const VecX& d) {
   const std::size_t n = static_cast<std::size_t>(d.size() / 6);
   double spread = 0;

@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The dda maintainers
 #pragma once
 // contact_law = "holding" (the default): penalty springs decided by the
 // open-close iteration (penalty_contacts.hpp), with friction that holds a

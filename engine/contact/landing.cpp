@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The dda maintainers
 #include "contact/landing.hpp"
 
 #include <algorithm>
@@ -106,7 +108,7 @@ int LandingLaw::resolve(std::span<Contact> contacts, const ContactLinearisation&
   // to the springs. The correction moves a block against its landing
   // contacts only, and a confined block, moved into its other contacts, is
   // thrown back by their springs: in blast(2) and a jointed slope that made
-  // energy (docs/contacts.md).
+  // energy (docs/landings.md, Tried and not kept).
   if (!candidates_.empty()) {
     confined_.assign(blocks.count(), 0);
     std::size_t next = 0;

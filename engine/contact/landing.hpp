@@ -1,8 +1,10 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The dda maintainers
 #pragma once
-// The landing law (control `restitution`, off by default; docs/contacts.md,
-// "Landings: the impact law"): a contact that lands in a step ends it as a
-// rigid-body impact with a coefficient of restitution e would end it, not as
-// the penalty springs and the time step throw it.
+// The landing law (control `restitution`, off by default; docs/landings.md):
+// a contact that lands in a step ends it as a rigid-body impact with a
+// coefficient of restitution e would end it, not as the penalty springs and
+// the time step throw it.
 //
 // Why: a contact spring far stiffer than the step resolves (ωΔt ≫ 1) stops
 // a landing block within the step, and Shi's v₁ = 2d/Δt − v₀ then maps the

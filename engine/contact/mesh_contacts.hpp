@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The dda maintainers
 #pragma once
 // Contacts of meshed blocks stay on their outlines (block/mesh.hpp): the
 // elements of one mesh share nodes and never contact each other, an edge

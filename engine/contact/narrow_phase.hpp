@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The dda maintainers
 #pragma once
 // Narrow phase: the vertex-edge contacts of each candidate block pair.
 //
@@ -28,7 +30,7 @@
 //     again, and the facing edges then overlap and make their contacts.
 // Neither kind pairs a vertex with an edge it has gone round the corner of
 // (passed_corner): such a vertex belongs to the next edge at that corner
-// (docs/contacts.md, contact transfer).
+// (docs/contact_transfer.md).
 #include <span>
 #include <utility>
 #include <vector>

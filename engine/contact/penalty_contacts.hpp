@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The dda maintainers
 #pragma once
 // What the two penalty laws ("shi", shi_law.hpp; "holding", holding_law.hpp)
 // share: contacts as springs (normal on a closed contact, shear on a locked

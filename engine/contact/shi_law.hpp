@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The dda maintainers
 #pragma once
 // contact_law = "shi": Shi's (1988) contact law as the paper has it, and as
 // the engine had it before the holding law, bit for bit (the paper's

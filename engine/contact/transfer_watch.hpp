@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The dda maintainers
 #pragma once
 // The contact-transfer checks of a reused contact list, run only where their
 // answer can have changed. Each step, every kept contact's vertex must be
@@ -10,7 +12,7 @@
 // moved (the sum of its largest vertex displacement at each check). A test
 // runs again only once its blocks' bounds have used up its slack: a skipped
 // test would have answered false, so the answers, and the steps, are those
-// of testing everything every step, bit for bit (docs/contacts.md).
+// of testing everything every step, bit for bit (docs/contact_transfer.md).
 #include <algorithm>
 #include <span>
 #include <vector>

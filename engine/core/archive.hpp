@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The dda maintainers
 #pragma once
 // The bytes of a checkpoint (world/checkpoint.hpp): one list of fields per
 // type, read and written by the same code (as cereal's serialize). A type

@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The dda maintainers
 #pragma once
 // Errors in two tiers:
 //  - dda::Error: anything a user can cause (bad geometry, bad material, a step

@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The dda maintainers
 #pragma once
 // Checks of a state read from a file anyone can edit (a checkpoint, whose
 // checksums only catch accidents): every index, count and size against the

@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The dda maintainers
 #pragma once
 // Memory limits stated up front: what this process may still allocate, and
 // a refusal, with the estimate, of work that would need more. The callers

@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The dda maintainers
 #pragma once
 // The one checked way to write an output file (monitor CSV, run log, PNG
 // frames and plots, VTU/PVD, result and sweep tables, checkpoints). Every

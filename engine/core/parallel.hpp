@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The dda maintainers
 #pragma once
 // Deterministic parallel building blocks. Results never depend on the thread
 // count: work is split into fixed-size chunks and partial results are

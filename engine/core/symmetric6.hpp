@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The dda maintainers
 #pragma once
 // A symmetric 6×6 matrix kept as its upper triangle: 21 numbers instead of
 // 36, for the per-block arrays of models with 10^5 blocks (the block terms of

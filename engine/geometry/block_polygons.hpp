@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The dda maintainers
 #pragma once
 // A read-only view of every block outline: block b owns
 // vertices[start[b] .. start[b+1]), counter-clockwise; inner_edge (indexed

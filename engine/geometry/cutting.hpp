@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The dda maintainers
 #pragma once
 // Block generation: cut a rock domain into blocks by joint sets, explicit
 // joint lines and excavations (holes).

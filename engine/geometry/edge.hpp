@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The dda maintainers
 #pragma once
 // Block edges: how cutting, the World and the Lua layer name an edge (its
 // block and index: edge k runs from vertex k to k + 1 of the block's

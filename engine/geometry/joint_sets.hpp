@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The dda maintainers
 #pragma once
 // Joint sets turned into segments: the persistent or non-persistent joints of
 // one set that can reach a box (the domain's bounding box).

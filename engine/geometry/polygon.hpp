@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The dda maintainers
 #pragma once
 // Simple polygons: area, centroid and the second moments the DDA sub-matrices
 // need, plus validation of user-supplied outlines.

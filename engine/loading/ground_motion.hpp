@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The dda maintainers
 #pragma once
 // Earthquake ground motion: an accelerogram read from a strong-motion file
 // (the USGS/CDMG corrected-accelerogram layout of data/, or a two-column

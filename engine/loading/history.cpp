@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The dda maintainers
 #include "loading/history.hpp"
 
 #include <algorithm>
@@ -64,6 +66,12 @@ double History::integral(double t) const {
   if (t >= t_.back()) return area_.back() + v_.back() * (t - t_.back());
   const std::size_t i = std::upper_bound(t_.begin(), t_.end(), t) - t_.begin();
   return area_[i - 1] + 0.5 * (v_[i - 1] + value(t)) * (t - t_[i - 1]);
+}
+
+std::vector<std::pair<double, double>> History::points() const {
+  std::vector<std::pair<double, double>> p;
+  for (std::size_t i = 0; i < t_.size(); ++i) p.emplace_back(t_[i], v_[i]);
+  return p;
 }
 
 }  // namespace dda

@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The dda maintainers
 #pragma once
 // A time history: piecewise linear through (t, value) points, constant
 // before the first and after the last. Loads that follow a history are
@@ -24,6 +26,8 @@ class History {
   // acceleration to its displacement, from rest at t = 0).
   double double_integral(double t) const;
   bool empty() const { return t_.empty(); }
+  // The (t, value) points it was made from.
+  std::vector<std::pair<double, double>> points() const;
   // Checkpoints (core/archive.hpp): the points and their integral; read,
   // the points are checked as the constructor checks them and both
   // integrals made again from them (the same bits).

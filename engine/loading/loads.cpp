@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The dda maintainers
 #include "loading/loads.hpp"
 
 #include <cmath>
@@ -54,6 +56,21 @@ void Loads::set_pressure_history(int id, History pressure) {
   if (id < 0 || id >= static_cast<int>(pressure_loads_.size())) throw Error(msg("no pressure load ", id));
   pressure_loads_[id].history = std::move(pressure);
   pressure_loads_[id].from_history = true;
+}
+
+std::vector<LoadSignal> Loads::dynamic_signals() const {
+  std::vector<LoadSignal> signals;
+  for (const PointLoadHistory& h : point_load_histories_)
+    signals.push_back({h.magnitude.points(), SignalKind::Force, msg("point load ", h.load)});
+  for (std::size_t i = 0; i < pressure_loads_.size(); ++i)
+    if (pressure_loads_[i].from_history)
+      signals.push_back({pressure_loads_[i].history.points(), SignalKind::Force, msg("pressure load ", i)});
+  return signals;
+}
+
+void Loads::remesh(const Remeshing& r) {
+  for (PointLoad& p : point_loads_) p.block = r.element_at(p.block, p.point);
+  for (PressureLoad& p : pressure_loads_) p.edges = r.edges(p.edges);
 }
 
 void Loads::add_terms(double t_end, const Blocks& blocks, BlockTerms& terms) {

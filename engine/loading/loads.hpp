@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The dda maintainers
 #pragma once
 // Loads on the blocks (the paper's point loads, FHI and SHI): what a model
 // holds, and their terms in each step. Histories are evaluated at the end of
@@ -6,7 +8,9 @@
 
 #include "assembly/block_terms.hpp"
 #include "block/blocks.hpp"
+#include "block/remeshing.hpp"
 #include "loading/history.hpp"
+#include "loading/load_frequency.hpp"
 
 namespace dda {
 
@@ -41,6 +45,16 @@ class Loads {
     double point = 0, pressure = 0;
   };
   Work step_work(const Blocks& blocks, const VecX& d) const;
+
+  // The loads that follow a history, as wave signals (load_frequency.hpp).
+  std::vector<LoadSignal> dynamic_signals() const;
+  // After first-order blocks were meshed in place: point loads go to the
+  // element under them, pressures onto the edges that now stand where
+  // theirs stood (ids unchanged).
+  void remesh(const Remeshing& r);
+  // The edges of pressure load `id` (as they are now).
+  const std::vector<EdgeRef>& pressure_edges(int id) const { return pressure_loads_.at(id).edges; }
+  BlockId point_load_block(int id) const { return point_loads_.at(id).block; }
 
   // What a checkpoint holds (core/archive.hpp): every load with its history.
   template <class Archive>

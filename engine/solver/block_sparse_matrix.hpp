@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The dda maintainers
 #pragma once
 // The global DDA matrix: symmetric, 6×6 blocks, one block row per rock block,
 // a block (i, j) wherever blocks i and j are in contact. Stored in full

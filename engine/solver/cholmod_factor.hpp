@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The dda maintainers
 #pragma once
 // A sparse Cholesky factor A = L·Lᵀ of a stored block matrix by CHOLMOD
 // (SuiteSparse), supernodal, and M⁻¹ r by its two triangular solves.

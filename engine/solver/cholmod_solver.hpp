@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The dda maintainers
 #pragma once
 // The sparse direct solver of stiff systems (quasi-static walls, slopes,
 // dynamic steps of a millisecond): CG preconditioned with a CHOLMOD factor

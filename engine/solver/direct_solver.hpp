@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The dda maintainers
 #pragma once
 // Sparse direct LDLᵀ (Eigen's simplicial factorisation). A test oracle for
 // the PCG, not used by the engine's step; it shows the stored-matrix

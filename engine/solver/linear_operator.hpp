@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The dda maintainers
 #pragma once
 // The system matrix as the solvers see it: symmetric, in block rows of 6
 // (one per rock block), with its diagonal blocks and the product y = A·x by

@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The dda maintainers
 #pragma once
 // Linear solvers behind one interface (as MFEM's linalg/solvers.hpp): an
 // operator, tolerance, iteration limit, warm start from the given x, an

@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The dda maintainers
 #pragma once
 // Aggregation multigrid on the 6×6 blocks, used as a PCG preconditioner.
 //
@@ -26,7 +28,7 @@
 // correction), so the preconditioner is symmetric positive definite and
 // plain CG stays valid.
 //
-// What it achieves (issue 8 walls with gg = 1, Δt = 1e-3 s, cold solves to 1e-10):
+// What it achieves (walls with gg = 1, Δt = 1e-3 s, cold solves to 1e-10):
 // 4–4.5× fewer CG iterations than block-Jacobi (wall(10) 372 → 88, wall(20)
 // 452 → 118), for about 4× the work per iteration: no faster there. It gains
 // where inertia is weaker (larger Δt: 6× fewer iterations, 2× faster). What

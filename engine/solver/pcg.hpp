@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The dda maintainers
 #pragma once
 // Preconditioned conjugate gradients, the step's linear solver, and its
 // block-Jacobi preconditioner (multigrid.hpp holds the other).

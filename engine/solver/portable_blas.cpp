@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The dda maintainers
 // The six dense routines CHOLMOD's supernodal factor calls, defined by the
 // engine so that their sums do not depend on the machine (portable_blas.hpp).
 // Column-major, Fortran calling convention (every argument by address; the

@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The dda maintainers
 #pragma once
 // The step's linear solver: PCG (pcg.hpp) or the kept CHOLMOD factor
 // (cholmod_solver.hpp), chosen once per step (SolverSettings::kind; Auto
@@ -11,7 +13,7 @@
 //     CHOLMOD's own counts (nnz(L), flops) against the product's 72 flops per
 //     stored block, each weighted by how fast this kind of flop runs
 //     (kSolveFlopWeight, kFactorFlopWeight, kFactorProducts; fitted on
-//     walls 20 to 100, see below and docs/performance.md).
+//     walls 20 to 100, see below and docs/direct_solver.md).
 //
 //   1. Steps start with PCG. After kLongStepsBeforeTrial steps in a row whose
 //      solves took over kToDirect CG iterations each (stiff systems: walls,
@@ -74,7 +76,7 @@ class AutoSolver final : public LinearSolver {
   static constexpr int kRetrySteps = 50;       // PCG steps before the factor is tried again
   // The model's constants, fitted to the CPU time per step of wall(20),
   // wall(40) and wall(100) with each solver on one thread (12 steps each,
-  // quasi-static and dynamic, both contact laws; docs/performance.md): a PCG
+  // quasi-static and dynamic, both contact laws; docs/direct_solver.md): a PCG
   // iteration costs about one product (the stored product dominates it); a
   // CG iteration with the factor 14, 19 and 23 PCG iterations, its two
   // triangular solves reading each entry of L once (2.8 product flops per

@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The dda maintainers
 #pragma once
 // What the controls tell the linear solver: one part per backend, each read by
 // its backend alone (LinearSolver::begin_step). A new backend (a sparse

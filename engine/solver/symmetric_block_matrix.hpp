@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The dda maintainers
 #pragma once
 // A symmetric matrix of 6×6 blocks stored once per block pair: the upper
 // triangle (i, j ≥ i) by block rows, and for each row the blocks of the

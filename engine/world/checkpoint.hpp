@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The dda maintainers
 #pragma once
 // Checkpoint and restart: a World's whole state in one file, so that a run
 // continues from it bit for bit as if it had never stopped (the same state
@@ -38,8 +40,10 @@ namespace dda {
 // was a bonded joint when first found. 8: the contact law's part, with its
 // per-contact history (the lagged friction's memory, out of the contacts).
 // 9: the automatic solver choice's trial (its work against PCG's, and a
-// trial given up in the step).
-inline constexpr std::uint32_t kCheckpointFormat = 9;
+// trial given up in the step). 10: the wave model (its decision, the
+// in-place meshing's map, the joints' lengths, the boundaries' edges and
+// the edge targets).
+inline constexpr std::uint32_t kCheckpointFormat = 10;
 
 // The World's state and `extra` (bytes its owner keeps beside it: the Lua
 // layer's loads and monitors), as a checkpoint file's bytes.

@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The dda maintainers
 #include "world/controls.hpp"
 
 #include <cmath>
@@ -22,15 +24,17 @@ constexpr ControlRange kZeroOffOrPositive{0, kInf, false, false, "must be zero (
 constexpr ControlRange kZeroAutomaticOrPositive{0, kInf, false, false, "must be zero (automatic) or positive"};
 constexpr ControlRange kOffOrUnitInterval{-1, 1, false, false, "must be -1 (off) or lie in [0, 1]", true};
 constexpr ControlRange kThreads{0, kMaxThreads, false, false, "must be zero (every core) or 1 to 4096"};
+constexpr ControlRange kAutomaticZeroOrPositive{
+    -1, kInf, false, false, "must be -1 (from the loads), 0 (first-order blocks) or positive", true};
 
-constexpr const char* kPlaneNames[] = {"stress", "strain"};                            // PlaneMode order
-constexpr const char* kIntegratorNames[] = {"shi", "newmark", "generalized_alpha"};    // Integrator order
-constexpr const char* kMeshMassNames[] = {"consistent", "lumped", "mixed"};            // MeshMass order
-constexpr const char* kContactLawNames[] = {"holding", "shi"};                         // ContactLaw order
-constexpr const char* kPreconditionerNames[] = {"auto", "block_jacobi", "multigrid"};  // Preconditioning order
-constexpr const char* kSolverNames[] = {"auto", "pcg", "cholmod"};                     // SolverKind order
-constexpr const char* kFillOrderingNames[] = {"metis", "amd"};                         // FillOrdering order
-constexpr const char* kMeshPreconditionerNames[] = {"block_factor", "node_jacobi"};    // MeshPreconditioning order
+constexpr const char* kPlaneNames[] = {"stress", "strain"};                                  // PlaneMode order
+constexpr const char* kIntegratorNames[] = {"shi", "newmark", "generalized_alpha", "auto"};  // Integrator order
+constexpr const char* kMeshMassNames[] = {"consistent", "lumped", "mixed", "auto"};          // MeshMass order
+constexpr const char* kContactLawNames[] = {"holding", "shi"};                               // ContactLaw order
+constexpr const char* kPreconditionerNames[] = {"auto", "block_jacobi", "multigrid"};        // Preconditioning order
+constexpr const char* kSolverNames[] = {"auto", "pcg", "cholmod"};                           // SolverKind order
+constexpr const char* kFillOrderingNames[] = {"metis", "amd"};                               // FillOrdering order
+constexpr const char* kMeshPreconditionerNames[] = {"block_factor", "node_jacobi"};  // MeshPreconditioning order
 
 constexpr ControlSpec number(const char* name, double& (*field)(Controls&), ControlRange range, const char* doc,
                              const char* default_text = nullptr) {
@@ -75,7 +79,9 @@ const ControlSpec kControls[] = {
     choice(
         "integrator", kIntegratorNames, [](const Controls& c) { return static_cast<int>(c.integrator); },
         [](Controls& c, int i) { c.integrator = static_cast<Integrator>(i); },
-        "time integration (`docs/time_integration.md`): `\"shi\"`, the paper's scheme (Newmark β = ½, γ = 1: "
+        "time integration (`docs/time_integration.md`): `\"auto\"`, Shi's scheme, or, where the dynamic loads "
+        "had the blocks meshed (`docs/waves.md`), Newmark's average acceleration; `\"shi\"`, the paper's scheme "
+        "(Newmark β = ½, γ = 1: "
         "first order, it damps a wave of angular frequency ω by about exp(−ω²Δt·t/4)); `\"newmark\"`, "
         "average acceleration (β = ¼, γ = ½: second order, no numerical damping); "
         "`\"generalized_alpha\"` (Chung–Hulbert: second order, damping only near the step's own "
@@ -105,8 +111,8 @@ const ControlSpec kControls[] = {
         "from the start: a block that must hold on a slope holds, and one that slides does so at the "
         "closed-form rate, from Δt = 1e-2 to 1e-4 s; at smaller Δt a block's strain modes can chatter on its "
         "contacts (at 1e-5 s a sliding block; a 0.5 m block that must hold, loaded at once, creeps; under "
-        "`\"shi\"` too; `strain_damping` or `friction_lag` cures it). `\"shi\"`: Shi's law as the engine "
-        "had it before the holding law, bit for bit: a contact that closes or locks again does so unloaded, "
+        "`\"shi\"` too; `strain_damping` or `friction_lag` cures it). `\"shi\"`: Shi's law (1988), "
+        "the paper's: a contact that closes or locks again does so unloaded, "
         "and a block that must stay on a slope creeps down it at small Δt; the paper's scripts pin it to "
         "reproduce the paper's figures and the validation report (docs/contacts.md)"),
     number(
@@ -117,7 +123,7 @@ const ControlSpec kControls[] = {
         "`\"newmark\"` at every Δt): the block chatters. 5e-5 (12 % at the 750 Hz of a 1 m granite block) "
         "keeps such a block sliding at the closed-form rate on φ up to 25°; a larger φ or a larger block "
         "(lower ω) needs more. A wave of those frequencies is damped as much: the paper's bar loses 5 % of its "
-        "peak at 1e-6 (`docs/contacts.md`)",
+        "peak at 1e-6 (`docs/friction_flutter.md`)",
         "0 (off)"),
     number(
         "friction_lag", [](Controls& c) -> double& { return c.friction_lag; }, kZeroOffOrPositive,
@@ -126,11 +132,11 @@ const ControlSpec kControls[] = {
         "exactly for any Δt (Δt ≫ t_r: no lag); in steady sliding N_f = N, and a contact that closes (a landing) "
         "is a new interface: its N_f is the mean of the N it has carried since. The fast swings of N that couple a "
         "sliding block's strain modes into chatter (Δt ≤ 1e-5 s) "
-        "no longer reach its friction: with 3e-3, under `contact_law = \"holding\"` and Shi's integrator, a 1 m "
+        "do not reach its friction: with 3e-3, under `contact_law = \"holding\"` and Shi's integrator, a 1 m "
         "granite block slides at the closed-form rate with its contacts closed at Δt = 1e-2 to 1e-6 s, φ up to "
         "45° (with gravity switched on at once, up to 25° below 1e-5 s), and waves through intact joints are "
-        "untouched. Not yet the default: under `\"shi\"` it lets that law's model-wide band hold a block that "
-        "must slide (`docs/contacts.md`)",
+        "untouched. Not the default: under `\"shi\"` it lets that law's model-wide band hold a block that "
+        "must slide (`docs/friction_flutter.md`)",
         "0 (off)"),
     number(
         "restitution", [](Controls& c) -> double& { return c.restitution; }, kOffOrUnitInterval,
@@ -140,7 +146,7 @@ const ControlSpec kControls[] = {
         "restitution e in [0, 1] would end it: it leaves at e times its approach speed (at 0 it stays on the "
         "face), its contact point stops if Coulomb's bound μ·(normal impulse) allows, else slides with that "
         "impulse, the same at every Δt. -1: off, the penalty springs' bounce (about 0.76 at Δt = 1e-3 s, another "
-        "at each Δt). Integrator `\"shi\"` and first-order blocks only (`docs/contacts.md`, \"Landings\")",
+        "at each Δt). Integrator `\"shi\"` and first-order blocks only (`docs/landings.md`)",
         "-1 (off)"),
     number(
         "contact_range", [](Controls& c) -> double& { return c.contact_range; }, kZeroOrPositive,
@@ -150,19 +156,28 @@ const ControlSpec kControls[] = {
         " up to Shi's 2.5·g2·(half height)",
         "0 (automatic)"),
     number(
-        "mesh_size", [](Controls& c) -> double& { return c.mesh_size; }, kZeroOffOrPositive,
+        "mesh_size", [](Controls& c) -> double& { return c.mesh_size; }, kAutomaticZeroOrPositive,
         "m: blocks added from now on whose rock material has no `mesh_size` of its own are meshed into "
         "constant-strain triangles of about this size, with continuous displacement inside and contacts"
         " on the outline (`docs/meshed_blocks.md`); convex blocks on a structured grid, concave ones by CGAL. 0: "
-        "first-order blocks",
-        "0 (off)"),
+        "first-order blocks. -1: from the dynamic loads: before the first step, where a block is larger than the "
+        "element that resolves the loads' shortest shear wave (12 elements per wavelength at the frequency "
+        "below which 99 % of their energy lies), every block is meshed at that size (`docs/waves.md`)",
+        "-1 (from the loads)"),
     choice(
         "mesh_mass", kMeshMassNames, [](const Controls& c) { return static_cast<int>(c.mesh_mass); },
         [](Controls& c, int i) { c.mesh_mass = static_cast<MeshMass>(i); },
-        "the mass of meshed blocks' elements (`docs/meshed_blocks.md`): `\"consistent\"` (ρ∫TᵀT, exact: "
+        "the mass of meshed blocks' elements (`docs/meshed_blocks.md`): `\"auto\"`, lumped under dynamic loads "
+        "(`docs/waves.md`), consistent otherwise; `\"consistent\"` (ρ∫TᵀT, exact: "
         "short waves run faster than c, a precursor ahead of a steep front), `\"lumped\"` (a third of an "
         "element's mass at each corner: short waves lag) or `\"mixed\"` (their mean). Translation and the "
         "mass are exact under each; first-order blocks keep their consistent mass"),
+    number(
+        "max_frequency", [](Controls& c) -> double& { return c.max_frequency; }, kZeroAutomaticOrPositive,
+        "Hz: the highest frequency of the dynamic loads, as the user states it; 0: found from the loads' "
+        "histories and functions (the frequency below which 99 % of each one's energy lies; `docs/waves.md`). "
+        "The element size of `mesh_size = -1` follows from it",
+        "0 (from the loads)"),
     number(
         "fixed_point_factor", [](Controls& c) -> double& { return c.fixed_point_factor; }, kPositive,
         "fixed-point spring = factor × g0"),

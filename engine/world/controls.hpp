@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The dda maintainers
 #pragma once
 // The controls of a World: what a script sets with dda.model{...} and
 // m:controls{...}. They may change between steps and are checked at the
@@ -37,14 +39,14 @@ static_assert(kMaxThreads == 4096, "the threads control's rule says 4096");
 
 struct Controls {
   PlaneMode plane = PlaneMode::Stress;
-  double g0 = 0;                            // normal contact spring (N/m per unit thickness); 0 → 50 × largest E
-  double g1 = 0;                            // upper step time (s); 0 → the default rule (world/time_step_rule.hpp)
-  double g2 = 0.005;                        // largest step displacement / half the model height
-  double gg = 1;                            // dynamic parameter: share of velocity carried into the next step
-  Integrator integrator = Integrator::Shi;  // time integration (block/time_scheme.hpp)
-  double rho_inf = 0.9;                     // generalized-α: spectral radius at high frequency
-  double shear_ratio = 0.4;                 // shear spring = shear_ratio × g0 (Shi's 2/5)
-  int open_close_limit = 6;                 // open-close iterations before Δt is cut and the step redone
+  double g0 = 0;                             // normal contact spring (N/m per unit thickness); 0 → 50 × largest E
+  double g1 = 0;                             // upper step time (s); 0 → the default rule (world/time_step_rule.hpp)
+  double g2 = 0.005;                         // largest step displacement / half the model height
+  double gg = 1;                             // dynamic parameter: share of velocity carried into the next step
+  Integrator integrator = Integrator::Auto;  // time integration (block/time_scheme.hpp; auto: world/wave_model.hpp)
+  double rho_inf = 0.9;                      // generalized-α: spectral radius at high frequency
+  double shear_ratio = 0.4;                  // shear spring = shear_ratio × g0 (Shi's 2/5)
+  int open_close_limit = 6;                  // open-close iterations before Δt is cut and the step redone
   // Open-close hysteresis of gap decisions and intact joints, as a fraction
   // of half the model height: a closed contact opens once separated by more
   // than this, an open one closes once penetrated by more; an intact joint
@@ -57,19 +59,19 @@ struct Controls {
   // contact_slack.)
   double contact_tolerance = 1e-9;
   // The contact law (contact/contact_model.hpp, one file each): Holding,
-  // in which friction holds (the default); Shi, the law of Shi (1988) as the
-  // engine had it before, opt-in (a block that must hold on a slope creeps at small Δt;
+  // in which friction holds (the default); Shi, the law of Shi (1988),
+  // opt-in (a block that must hold on a slope creeps at small Δt;
   // the paper's scripts pin it to reproduce the paper's figures).
   ContactLaw contact_law = ContactLaw::Holding;
   // Kelvin–Voigt damping of the blocks' strains, σ = E(ε + β·ε̇): β in
   // seconds, a damping ratio βω/2 at angular frequency ω; 0: none (the
   // default). It keeps a block sliding at small Δt from chattering
-  // (docs/contacts.md).
+  // (docs/friction_flutter.md).
   double strain_damping = 0;
   // Friction that lags the normal force: t_r in seconds, the friction's
   // normal force N_f following N as dN_f/dt = (N − N_f)/t_r; 0: none (the
   // default). It keeps a block sliding at small Δt from chattering without
-  // damping waves (docs/contacts.md).
+  // damping waves (docs/friction_flutter.md).
   double friction_lag = 0;
   // The landing law (contact/landing.hpp): a contact that lands ends its
   // step as a rigid-body impact with this coefficient of restitution e,
@@ -77,10 +79,14 @@ struct Controls {
   double restitution = -1;
   double contact_range = 0;  // m; 0 → automatic (contact/contact_detection.hpp)
   // Element size (m) of the meshes of blocks added from now on whose rock
-  // material gives none; 0: first-order blocks (block/mesh.hpp).
-  double mesh_size = 0;
+  // material gives none (block/mesh.hpp); 0: first-order blocks; −1: from
+  // the dynamic loads (world/wave_model.hpp).
+  double mesh_size = -1;
   // The mass of the meshes' elements (block/time_scheme.hpp).
-  MeshMass mesh_mass = MeshMass::Consistent;
+  MeshMass mesh_mass = MeshMass::Auto;
+  // The highest frequency (Hz) of the dynamic loads, when the user states
+  // it; 0: found from the loads (loading/load_frequency.hpp).
+  double max_frequency = 0;
 
   double fixed_point_factor = 100;  // fixed-point spring = factor × g0
   Vec2 gravity = Vec2::Zero();      // m/s²

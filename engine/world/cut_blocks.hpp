@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The dda maintainers
 #pragma once
 // A World from cut blocks: every block of a BlockSet (geometry/cutting.hpp)
 // added to the World with its edges' joint materials and tags.

@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The dda maintainers
 #pragma once
 // The energy budget's accounting (energy_budget.hpp), in Update: from the
 // accepted step displacement, before anything moves.

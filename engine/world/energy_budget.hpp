@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The dda maintainers
 #pragma once
 // The energy budget (J per metre of thickness): what the blocks and contacts
 // hold, the work each kind of load and boundary does on the blocks, what

@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The dda maintainers
 #pragma once
 // Settling: the model brought to equilibrium under what acts on it now
 // (gravity, initial stresses, loads at their present values) before a

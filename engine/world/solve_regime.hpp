@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The dda maintainers
 #pragma once
 // How a step solves, chosen once per step before its first solve: the
 // policy that decides everything the step does differently where solves are

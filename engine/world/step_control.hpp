@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The dda maintainers
 #pragma once
 // The ControlStep stage's vocabulary: why an attempt at a step is rejected.
 // A rejected attempt is redone: with the same Δt after the automatic contact

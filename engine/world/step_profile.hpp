@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The dda maintainers
 #pragma once
 // The stages of a step, and what a step reports: its counts and a profile of
 // seconds per stage (Box2D v3's b2Profile). Adding a stage adds an entry to

@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The dda maintainers
 // The DDA time step as its table of contents (as Box2D v3's b2World_Step):
 //
 //   step
@@ -160,9 +162,7 @@ void Stepper::begin_step(WorldState& w) {
 // at g1 and never exceeds it.
 void Stepper::derive_automatic_controls(WorldState& w) {
   const Controls& c = w.controls;
-  double e_max = 0;
-  for (const RockMaterial& r : w.rocks) e_max = std::max(e_max, r.youngs);
-  g0_ = c.g0 > 0 ? c.g0 : 50 * e_max;
+  g0_ = w.contact_spring();
   g1_ = c.g1 > 0 ? c.g1 : default_time_step(w).dt;
   if (w.dt <= 0 || w.dt > g1_) w.dt = g1_;
 }
@@ -181,8 +181,8 @@ void Stepper::derive_material_constants(const WorldState& w) {
   tan_friction_.resize(w.joints.size());
   for (std::size_t j = 0; j < w.joints.size(); ++j) tan_friction_[j] = std::tan(deg_to_rad(w.joints[j].friction_deg));
   scheme_.gg = c.gg;
-  scheme_.choose(c.integrator, c.rho_inf);
-  scheme_.mesh_mass = c.mesh_mass;
+  scheme_.choose(effective_integrator(w), c.rho_inf);
+  scheme_.mesh_mass = effective_mesh_mass(w);
 }
 
 // A model made for another law takes over the contacts' history where it
@@ -208,7 +208,7 @@ void Stepper::set_up_contact_model(const WorldState& w) {
   p.tan_friction = tan_friction_;
   p.friction_lag = c.friction_lag;
   p.restitution = c.restitution;
-  p.integrator = c.integrator;
+  p.integrator = effective_integrator(w);
   ContactModel& model = contact_model(w);
   model.check(p, w.blocks);
   model.set_parameters(p);

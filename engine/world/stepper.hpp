@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The dda maintainers
 #pragma once
 // The DDA time step. A Stepper advances a WorldState by one step and owns
 // everything the step needs besides the model itself: resolved controls, the

@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The dda maintainers
 #pragma once
 // The default upper step time g1 (the control g1 = 0): Δt from what moves
 // the model, as a list of named terms of which the least is taken.

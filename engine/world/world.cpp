@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The dda maintainers
 #include "world/world.hpp"
 
 #include <algorithm>
@@ -9,7 +11,9 @@
 #include "core/error.hpp"
 #include "core/memory.hpp"
 #include "geometry/polygon.hpp"
+#include "loading/load_frequency.hpp"
 #include "world/stepper.hpp"
+#include "world/wave_model.hpp"
 
 namespace dda {
 
@@ -22,7 +26,42 @@ World::~World() = default;
 World::World(World&&) noexcept = default;
 World& World::operator=(World&&) noexcept = default;
 
-StepStats World::step() { return stepper_->step(s_); }
+StepStats World::step() {
+  if (!s_.wave.decided) decide_wave_model();
+  return stepper_->step(s_);
+}
+
+const WaveModel& World::decide_wave_model(std::span<const LoadSignal> script_signals) {
+  if (s_.wave.decided) return s_.wave;
+  if (s_.blocks.count() == 0) throw Error("the model has no blocks");
+  WaveModel wave = choose_wave_model(s_, dynamic_load_frequency(s_, script_signals));
+  const std::vector<double> sizes = meshes_for_waves(s_, wave.frequency);
+  if (wave.meshed_blocks > 0) {
+    s_.remeshing = mesh_in_place(s_.blocks, sizes, s_.rocks, s_.joints, s_.contact_spring());
+    s_.remeshing.blocks = &s_.blocks;
+    s_.loads.remesh(s_.remeshing);
+    s_.boundaries.remesh(s_.remeshing, s_.rocks, s_.controls.plane);
+    for (MaterialPoint& p : s_.tracked) p.block = s_.remeshing.element_at(p.block, p.origin);
+    s_.remeshing.blocks = nullptr;
+    s_.prepared = false;
+  }
+  s_.wave = std::move(wave);
+  return s_.wave;
+}
+
+std::vector<EdgeRef> World::edges_since_meshing(EdgeRef e) const {
+  if (s_.wave.meshed_blocks == 0) return {e};
+  if (e.block < 0 || e.block + 1 >= static_cast<BlockId>(s_.remeshing.old_vertex_start.size()))
+    throw Error(msg("no block ", e.block, " before the blocks were meshed"));
+  const std::vector<int>& start = s_.remeshing.old_vertex_start;
+  if (e.edge < 0 || e.edge >= start[e.block + 1] - start[e.block])
+    throw Error(msg("block ", e.block, " had no edge ", e.edge, " before the blocks were meshed"));
+  return s_.remeshing.edges({e});
+}
+
+std::vector<int> World::add_edge_targets(const std::vector<EdgeRef>& edges, bool directed, const Vec2& direction) {
+  return s_.boundaries.add_edge_targets(s_.blocks, edges, directed, direction);
+}
 
 // ---- Model building ---------------------------------------------------------
 
@@ -83,8 +122,11 @@ BlockId World::add_block(std::vector<Vec2> vertices, int rock_material, std::vec
     reverse_edges(edge_joints);
     reverse_edges(edge_tags);
   }
-  const double mesh_size =
-      s_.rocks[rock_material].mesh_size > 0 ? s_.rocks[rock_material].mesh_size : s_.controls.mesh_size;
+  double mesh_size = s_.rocks[rock_material].mesh_size > 0 ? s_.rocks[rock_material].mesh_size : s_.controls.mesh_size;
+  // After the wave model meshed the blocks, a block added with an automatic
+  // size gets the elements the load needs too.
+  if (mesh_size < 0 && s_.wave.active && s_.wave.meshed_blocks > 0)
+    mesh_size = wave_element_size(s_.rocks[rock_material], s_.wave.frequency);
   if (mesh_size > 0) return add_meshed_block(vertices, rock_material, edge_joints, edge_tags, mesh_size, what);
   return append_block(vertices, rock_material, edge_joints, edge_tags);
 }
@@ -129,36 +171,9 @@ BlockId World::add_meshed_block(const std::vector<Vec2>& outline, int rock_mater
 // Appends a counter-clockwise polygon, checked, as a first-order block.
 BlockId World::append_block(const std::vector<Vec2>& vertices, int rock_material, const std::vector<int>& edge_joints,
                             const std::vector<EdgeTag>& edge_tags) {
-  const BlockId id = static_cast<BlockId>(block_count());
-  Blocks& bl = s_.blocks;
-  const PolygonMoments m = polygon_moments(vertices);
-  bl.vertices.insert(bl.vertices.end(), vertices.begin(), vertices.end());
-  bl.initial_vertices.insert(bl.initial_vertices.end(), vertices.begin(), vertices.end());
-  bl.edge_joint.insert(bl.edge_joint.end(), edge_joints.begin(), edge_joints.end());
-  bl.edge_tag.insert(bl.edge_tag.end(), edge_tags.begin(), edge_tags.end());
-  bl.vertex_start.push_back(static_cast<int>(bl.vertices.size()));
-  bl.centroid.push_back(m.centroid);
-  bl.initial_centroid.push_back(m.centroid);
-  bl.area.push_back(m.area);
-  bl.sxx.push_back(m.sxx);
-  bl.syy.push_back(m.syy);
-  bl.sxy.push_back(m.sxy);
-  bl.mass.push_back(s_.rocks[rock_material].density * m.area);
-  bl.material.push_back(rock_material);
-  bl.stress.push_back(Vec3::Zero());
-  bl.velocity.push_back(Vec6::Zero());
-  bl.last_displacement.push_back(Vec6::Zero());
-  bl.acceleration.push_back(Vec6::Constant(std::numeric_limits<double>::quiet_NaN()));
-  bl.out_of_balance.push_back(Vec6::Zero());
-  // The mesh arrays exist once a block is meshed; first-order blocks then
-  // stand on no node and are no mesh's element.
-  if (bl.has_meshes() || s_.rocks[rock_material].mesh_size > 0 || s_.controls.mesh_size > 0) {
-    bl.node.resize(bl.vertices.size(), -1);
-    bl.inner_edge.resize(bl.vertices.size(), 0);
-    bl.mesh.resize(bl.count(), -1);
-  }
   s_.prepared = false;
-  return id;
+  return dda::append_block(s_.blocks, vertices, rock_material, s_.rocks[rock_material].density, edge_joints, edge_tags,
+                           s_.rocks[rock_material].mesh_size > 0 || s_.controls.mesh_size > 0);
 }
 
 // An element of a meshed block stands for its whole block: the rates are
@@ -248,7 +263,7 @@ void World::fix_edges(const std::vector<EdgeRef>& edges) { s_.boundaries.fix_edg
 int World::add_viscous_boundary(const std::vector<EdgeRef>& edges, int medium) {
   if (medium >= static_cast<int>(s_.rocks.size()))
     throw Error(msg("viscous boundary: no rock material ", medium, " (there are ", s_.rocks.size(), ")"));
-  return s_.boundaries.add_viscous_boundary(s_.blocks, s_.rocks, edges, medium >= 0 ? &s_.rocks[medium] : nullptr);
+  return s_.boundaries.add_viscous_boundary(s_.blocks, s_.rocks, edges, medium);
 }
 
 void World::set_incident_velocity(int boundary, History vx, History vy) {

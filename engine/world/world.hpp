@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The dda maintainers
 #pragma once
 // The model: a World owns every block, material, load, boundary, followed
 // point and contact (WorldState), and a Stepper that advances it one DDA
@@ -125,6 +127,36 @@ class World {
   Vec2 boundary_force(int id) const;
 
   // ---- Stepping -------------------------------------------------------------
+  // The wave model (world/wave_model.hpp), decided once, before the first
+  // step: the highest frequency of the dynamic loads (with the inputs the
+  // engine does not hold, sampled by the caller: a script's functions), and,
+  // where the controls leave it to the engine and a block is larger than
+  // the element that resolves it, every such block meshed in place (ids
+  // kept: block b becomes the first element of its mesh; loads, boundaries
+  // and followed points move onto the elements). step() decides it without
+  // such inputs when no one did before.
+  const WaveModel& decide_wave_model(std::span<const LoadSignal> script_signals = {});
+  const WaveModel& wave_model() const { return s_.wave; }
+  // The integrator and the elements' mass the steps use (the controls', or
+  // what "auto" resolves to: world/wave_model.hpp).
+  Integrator integrator_in_use() const { return effective_integrator(s_); }
+  MeshMass mesh_mass_in_use() const { return effective_mesh_mass(s_); }
+  // The edges that now stand where edge `e` of the blocks before the wave
+  // model's meshing stood ({e} when nothing was meshed).
+  std::vector<EdgeRef> edges_since_meshing(EdgeRef e) const;
+  // Increases when the wave model meshes the blocks (edges taken before are
+  // then mapped with edges_since_meshing).
+  int mesh_generation() const { return s_.wave.meshed_blocks > 0 ? 1 : 0; }
+  // The displacement targets made together on edges with target `id`.
+  std::vector<int> edge_target_ids(int id) const { return s_.boundaries.edge_target_ids(id); }
+  // Targets at the end points of edges (Boundaries::add_edge_targets):
+  // directed along `direction`, or the edges' inward normals when it is
+  // zero; not directed, in both components.
+  std::vector<int> add_edge_targets(const std::vector<EdgeRef>& edges, bool directed,
+                                    const Vec2& direction = Vec2::Zero());
+  const std::vector<EdgeRef>& pressure_edges(int id) const { return s_.loads.pressure_edges(id); }
+  BlockId point_load_block(int id) const { return s_.loads.point_load_block(id); }
+
   // One DDA time step (world/stepper.cpp: the step as its table of contents).
   StepStats step();
   // The upper step time g1 = 0 stands for, and why (world/time_step_rule.hpp).

@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The dda maintainers
 #pragma once
 // Frames: a Scene drawn off-screen with OpenGL (OSMesa, Mesa's llvmpipe), then
 // overlaid in software with the colour bar and text, as an RGB image.

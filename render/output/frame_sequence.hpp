@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The dda maintainers
 #pragma once
 // A numbered sequence of frames written during a run: the object the scripting
 // layer creates once and calls after every step.

@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The dda maintainers
 #pragma once
 // Writes PNGs on a worker thread so rendering and encoding do not stall the
 // simulation. The caller hands over a copy of what to draw (a Scene, an Image

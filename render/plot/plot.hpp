@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The dda maintainers
 #pragma once
 // History plots: line plots of recorded series, drawn in software (no OpenGL),
 // for monitors and the validation report.

@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The dda maintainers
 #pragma once
 // Software drawing on an Image: anti-aliased strokes, outlines, markers, and
 // "nice" axis ticks. Used for plots and for the overlays of frames (colour

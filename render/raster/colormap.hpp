@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The dda maintainers
 #pragma once
 // Colour maps: viridis (perceptually uniform, for magnitudes) and Moreland's
 // cool-warm (diverging, for signed fields). Each is a 256-entry table; a value

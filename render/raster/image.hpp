@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The dda maintainers
 #pragma once
 // An RGB8 image in memory (rows top first, as a PNG stores them) and PNG
 // output through stb_image_write. Everything the renderer produces — frames

@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The dda maintainers
 #pragma once
 // What a frame shows, as plain data: block outlines and per-block values, plus
 // contacts, monitor points, time and step. The renderer draws a Scene; it never

@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The dda maintainers
 // Everything in the renderer that reads a dda::World lives in this file, so
 // the rest of the library (and its tests) builds without the engine's World.
 #include "scene/world_scene.hpp"

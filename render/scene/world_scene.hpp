@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The dda maintainers
 #pragma once
 // The adapter from the engine: copies what a frame needs out of a dda::World
 // into a Scene. Cheap (a copy of the vertex and per-block arrays), so it can

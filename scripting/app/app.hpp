@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The dda maintainers
 #pragma once
 // The dda application: `dda run` (batch), `dda console`, `dda sweep`, built
 // on the Lua binding (scripting.hpp).

@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The dda maintainers
 // `dda console [SCRIPT]`: an interactive prompt in the style of Lua's own
 // lua.c: `return <line>` is tried first so expressions print, input continues
 // while the chunk is incomplete (its error ends in "<eof>"), errors print a

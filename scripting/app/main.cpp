@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The dda maintainers
 // The dda executable's command line: dda run | console | sweep, --help on
 // each, --version. A command-line error prints its cause and one line of
 // usage (exit status 2); --help prints the options (the man page is made

@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The dda maintainers
 // `dda run` (batch): the run log, a restart's checkpoint, the script in a
 // fresh state with Ctrl-C handled, and the end of the run (results, outputs
 // checked, exit status).

@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The dda maintainers
 // `dda sweep`: a parameter study as one command. Every combination of the
 // --grid values runs as its own `dda run` process in its own folder
 // (<out>/run_NNN: the run's outputs, its run.log, output.txt with what it

@@ -1,3 +1,5 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
+# SPDX-FileCopyrightText: 2026 The dda maintainers
 # Writes dda_version.hpp with the commit the binary is built from (git
 # describe; "unknown" outside a git checkout), rewriting it only when it
 # changed, so run logs name the exact source. Run at every build:

@@ -1,3 +1,5 @@
+-- SPDX-License-Identifier: GPL-3.0-or-later
+-- SPDX-FileCopyrightText: 2026 The dda maintainers
 -- bench.lua: time one benchmark scene and append a row to a CSV table.
 --
 -- Models:  one scene of scenes.lua: --set scene=wall --set n=40 | scene=blast

@@ -1,3 +1,5 @@
+-- SPDX-License-Identifier: GPL-3.0-or-later
+-- SPDX-FileCopyrightText: 2026 The dda maintainers
 -- meshed_cost.lua: the cost of meshed blocks against first-order blocks of
 -- the same count (docs/meshed_blocks.md, "Cost"), as a whole process to time.
 --
@@ -22,7 +24,7 @@ assert(kind == "meshed" or kind == "first_order", "meshed_cost: kind must be \"m
 
 local E, f = 50e9, 1500
 local m = dda.model{ plane = "stress", g0 = E, g1 = 2e-6, g2 = 0.005, gg = 1, integrator = "newmark",
-                     contact_law = "shi", threads = 1 }
+                     contact_law = "shi", mesh_size = 0, mesh_mass = "consistent", threads = 1 }
 local spacing = kind == "meshed" and 0.2 or block
 local rock = m:rock{ density = 2000, E = E, nu = 0.25, mesh_size = kind == "meshed" and mesh or nil }
 local joint = m:joint{ friction = 40, cohesion = 8e6, tension = 8e6, kn = 2 * E / 0.2 }

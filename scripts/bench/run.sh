@@ -1,4 +1,6 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: GPL-3.0-or-later
+# SPDX-FileCopyrightText: 2026 The dda maintainers
 # The engine benchmark table: every scene with 1 and 2 threads, one dda
 # process per row (so each row's peak memory is its own), as CSV with the
 # machine's description on its first line.
@@ -39,7 +41,7 @@ repeat=${REPEAT:-1}
 solver_rows="wall:20:10:2:pcg wall:20:10:2:cholmod wall:40:10:2:pcg wall:40:10:2:cholmod
   wall:20:10:2:pcg:1 wall:20:10:2:cholmod:1 wall:40:10:2:pcg:1 wall:40:10:2:cholmod:1"
 # The meshed rows: the paper's 2 m blocks meshed at 0.25 m within 12 m (the
-# Section 4 run, issue 27) and every block meshed at 1 m (41,370 elements,
+# Section 4 run) and every block meshed at 1 m (41,370 elements,
 # beside blast(0.5)'s 40,518 blocks: an element-step against a block-step).
 meshed_rows="blast_meshed:0.25/12 blast_meshed:1/0"
 default_scenes="wall:10 wall:20 wall:40 wall:100:5 wall:200:3 $solver_rows blast:2:5000 blast:2:50:2500 blast:1 blast:0.5 blast:0.5:50:2500 blast:0.25:5 $meshed_rows bar"

@@ -1,3 +1,5 @@
+-- SPDX-License-Identifier: GPL-3.0-or-later
+-- SPDX-FileCopyrightText: 2026 The dda maintainers
 -- state_hashes.lua: the state hash of each benchmark scene after a fixed number of steps.
 --
 -- Models:  the scenes of scenes.lua (bar, blast(2), wall(10), wall(20) with gg = 1)

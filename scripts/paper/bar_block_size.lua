@@ -1,3 +1,5 @@
+-- SPDX-License-Identifier: GPL-3.0-or-later
+-- SPDX-FileCopyrightText: 2026 The dda maintainers
 -- bar_block_size.lua: the paper's Model 1 joints in bars of smaller blocks: how
 -- far the blocks' own error (first peaks, and the wrong-sign precursor ahead of
 -- a compressive pulse) falls as the blocks shrink, against the exact jointed bar.
@@ -50,7 +52,7 @@ local nu = dda.param("nu", bars.rock.nu)
 -- block every node on a joint adds a contact, so the joint stiffens with the mesh).
 local penalty = dda.param("penalty", false)
 -- max_precursor (%): error unless every run's precursor lies under it (the
--- issue's target: 2 % of the amplitude at g0 <= 20E).
+-- the target: 2 % of the amplitude at g0 <= 20E).
 local max_precursor = dda.param("max_precursor", nil)
 local E, A, f = wave.E, wave.A, 1000
 local t_end = 3.6e-3  -- past the first tensile peak at the centre (about 3.2 ms)
@@ -60,7 +62,7 @@ local ex_comp, ex_tens = wave.incident(ex, "comp"), wave.incident(ex, "tens")
 
 local function run(size)
   local m = dda.model{ plane = "stress", g0 = g0 * E, g1 = dt, g2 = 0.005, gg = 1, integrator = integrator,
-                       contact_law = "shi", mesh_mass = mesh_mass }
+                       contact_law = "shi", mesh_mass = mesh_mass, mesh_size = 0 }
   local rock = m:rock{ density = bars.rock.density, E = bars.rock.E, nu = nu, mesh_size = mesh }
   local joint = m:joint{ friction = 40, cohesion = 8e6, tension = 8e6,
                         kn = (not penalty) and 2 * g0 * E / bars.spacing or nil }

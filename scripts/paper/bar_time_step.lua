@@ -1,3 +1,5 @@
+-- SPDX-License-Identifier: GPL-3.0-or-later
+-- SPDX-FileCopyrightText: 2026 The dda maintainers
 -- bar_time_step.lua: the paper's Model 1 bar with the second-order time
 -- integrator: how far the paper's step (2e-6 s) is from the step's limit, and
 -- how far that limit is from the exact jointed bar (the blocks' own error).

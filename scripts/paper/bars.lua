@@ -1,3 +1,5 @@
+-- SPDX-License-Identifier: GPL-3.0-or-later
+-- SPDX-FileCopyrightText: 2026 The dda maintainers
 -- bars.lua: the paper's jointed rock bars (Figs. 2 and 9), as a module the
 -- paper scripts share.
 --

@@ -1,3 +1,5 @@
+-- SPDX-License-Identifier: GPL-3.0-or-later
+-- SPDX-FileCopyrightText: 2026 The dda maintainers
 -- blast.lua: the paper's Section 4 underground blast in a jointed rock mass
 -- (Figs. 14-18), one parametrised script.
 --

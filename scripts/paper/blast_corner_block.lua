@@ -1,3 +1,5 @@
+-- SPDX-License-Identifier: GPL-3.0-or-later
+-- SPDX-FileCopyrightText: 2026 The dda maintainers
 -- blast_corner_block.lua: why the chamber's four corner blocks must be meshed
 -- too in the meshed Section 4 blast (docs/validation.md, "The paper's 2 m
 -- joints with meshed blocks").

@@ -1,3 +1,5 @@
+-- SPDX-License-Identifier: GPL-3.0-or-later
+-- SPDX-FileCopyrightText: 2026 The dda maintainers
 -- blast_csv.lua: reading blast.lua's CSV files, shared by blast_summary.lua and
 -- blast_meshed_summary.lua (no simulation).
 --

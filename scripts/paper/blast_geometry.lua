@@ -1,3 +1,5 @@
+-- SPDX-License-Identifier: GPL-3.0-or-later
+-- SPDX-FileCopyrightText: 2026 The dda maintainers
 -- blast_geometry.lua: the geometry of the paper's Section 4 blasting model.
 --
 -- Models:  a square jointed rock mass (100 m by default; the paper's Models 1-3

@@ -1,3 +1,5 @@
+-- SPDX-License-Identifier: GPL-3.0-or-later
+-- SPDX-FileCopyrightText: 2026 The dda maintainers
 -- blast_joint_offset.lua: how much the PPV at MP1 of the paper's blast model
 -- (Section 4, Fig. 14b) depends on where the joint pattern lies.
 --

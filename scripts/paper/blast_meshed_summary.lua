@@ -1,3 +1,5 @@
+-- SPDX-License-Identifier: GPL-3.0-or-later
+-- SPDX-FileCopyrightText: 2026 The dda maintainers
 -- blast_meshed_summary.lua: Figs. 15-18 of the paper's Section 4 with meshed
 -- 2 m blocks, from the CSV files of blast.lua's 0.05 s runs. No simulation.
 --

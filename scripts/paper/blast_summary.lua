@@ -1,3 +1,5 @@
+-- SPDX-License-Identifier: GPL-3.0-or-later
+-- SPDX-FileCopyrightText: 2026 The dda maintainers
 -- blast_summary.lua: the Section 4 (blast) numbers against the paper, from the
 -- CSV files blast.lua wrote, and the Section 4 part of the validation report.
 -- No simulation.

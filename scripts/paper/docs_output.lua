@@ -1,3 +1,5 @@
+-- SPDX-License-Identifier: GPL-3.0-or-later
+-- SPDX-FileCopyrightText: 2026 The dda maintainers
 -- docs_output.lua: how the report scripts (validation_report.lua,
 -- blast_summary.lua) write into docs/, shared so that both follow the same
 -- rules:

@@ -1,3 +1,5 @@
+-- SPDX-License-Identifier: GPL-3.0-or-later
+-- SPDX-FileCopyrightText: 2026 The dda maintainers
 -- fig10_model4.lua: the paper's Fig. 10, boundary block edge length (Model 4).
 --
 -- Models:  Model 4 (bars.lua: Model 1 with the right-end column cut into three

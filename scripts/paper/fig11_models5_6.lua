@@ -1,3 +1,5 @@
+-- SPDX-License-Identifier: GPL-3.0-or-later
+-- SPDX-FileCopyrightText: 2026 The dda maintainers
 -- fig11_models5_6.lua: the paper's Fig. 11, wave incidence at an inclined boundary.
 --
 -- Models:  Models 5 and 6 (bars.lua: right end inclined at 60 and 30 deg, incidence

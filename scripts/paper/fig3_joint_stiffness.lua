@@ -1,3 +1,5 @@
+-- SPDX-License-Identifier: GPL-3.0-or-later
+-- SPDX-FileCopyrightText: 2026 The dda maintainers
 -- fig3_joint_stiffness.lua: the paper's Fig. 3, joint (contact spring) stiffness.
 --
 -- Models:  Model 1 (bars.lua), one full sine period (compression first), 5 MPa,

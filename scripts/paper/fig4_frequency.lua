@@ -1,3 +1,5 @@
+-- SPDX-License-Identifier: GPL-3.0-or-later
+-- SPDX-FileCopyrightText: 2026 The dda maintainers
 -- fig4_frequency.lua: the paper's Fig. 4, loading frequency.
 --
 -- Models:  Model 1 (bars.lua), one full sine period (compression first), 5 MPa,

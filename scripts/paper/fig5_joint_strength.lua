@@ -1,3 +1,5 @@
+-- SPDX-License-Identifier: GPL-3.0-or-later
+-- SPDX-FileCopyrightText: 2026 The dda maintainers
 -- fig5_joint_strength.lua: the paper's Fig. 5 and Table 1, joint strength.
 --
 -- Models:  Models 1 and 2 (bars.lua), half sine (compression), 5 MPa, 1000 Hz on

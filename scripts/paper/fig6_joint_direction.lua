@@ -1,3 +1,5 @@
+-- SPDX-License-Identifier: GPL-3.0-or-later
+-- SPDX-FileCopyrightText: 2026 The dda maintainers
 -- fig6_joint_direction.lua: the paper's Fig. 6, joint direction.
 --
 -- Models:  Models 1, 2, 3 (bars.lua: second set at 90, 60, 30 deg), half sine

@@ -1,3 +1,5 @@
+-- SPDX-License-Identifier: GPL-3.0-or-later
+-- SPDX-FileCopyrightText: 2026 The dda maintainers
 -- fig7_fixed_free.lua: the paper's Fig. 7, Fixed vs Free right end.
 --
 -- Models:  Model 1 (bars.lua), half sine (compression), 5 MPa, 1000 Hz on the left

@@ -1,3 +1,5 @@
+-- SPDX-License-Identifier: GPL-3.0-or-later
+-- SPDX-FileCopyrightText: 2026 The dda maintainers
 -- fig8_vbc_sbc.lua: the paper's Fig. 8, viscous (VBC) and spring (SBC) boundaries.
 --
 -- Models:  Model 1 (bars.lua), half sine (compression), 5 MPa, 1000 Hz on the left

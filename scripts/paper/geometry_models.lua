@@ -1,3 +1,5 @@
+-- SPDX-License-Identifier: GPL-3.0-or-later
+-- SPDX-FileCopyrightText: 2026 The dda maintainers
 -- geometry_models.lua: builds the geometry of the paper's rock bars, Models 1-6.
 --
 -- Models:  the six jointed rock bars of Sections 2 and 3 (see bars.lua): cuts

@@ -1,3 +1,5 @@
+-- SPDX-License-Identifier: GPL-3.0-or-later
+-- SPDX-FileCopyrightText: 2026 The dda maintainers
 -- jointed_bar_exact.lua: the exact response of a 1-D elastic bar crossed by
 -- linear elastic joints (the displacement-discontinuity model), by
 -- characteristics in time: the reference the DDA bars are measured against.

@@ -1,3 +1,5 @@
+-- SPDX-License-Identifier: GPL-3.0-or-later
+-- SPDX-FileCopyrightText: 2026 The dda maintainers
 -- jointed_bar_exact_check.lua: the exact jointed-bar tool (jointed_bar_exact.lua)
 -- against closed forms, and the exact numbers of the paper's Model 1.
 --
@@ -10,7 +12,7 @@
 --              paper's Eq. 4), one sine period of 5 MPa at 500, 1000 and 1500 Hz,
 --              sigma_xx at x = 10.1 m: prints the first compressive and tensile
 --              peaks; at 1000 Hz they must be -4.901 and 4.965 MPa within
---              0.002 MPa (issue 21's characteristics, written independently).
+--              0.002 MPa (characteristics, written independently).
 --              The record ends at 5.5 ms, before the fixed end's reflection
 --              arrives (about 20 m / 4100 m/s + 9.9 m / 4100 m/s).
 -- Run:     build/dda run scripts/paper/jointed_bar_exact_check.lua

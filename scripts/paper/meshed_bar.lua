@@ -1,3 +1,5 @@
+-- SPDX-License-Identifier: GPL-3.0-or-later
+-- SPDX-FileCopyrightText: 2026 The dda maintainers
 -- meshed_bar.lua: the paper's Model 1 bar with its blocks meshed (deformable
 -- blocks, docs/meshed_blocks.md) against the exact jointed bar.
 --

@@ -1,3 +1,5 @@
+-- SPDX-License-Identifier: GPL-3.0-or-later
+-- SPDX-FileCopyrightText: 2026 The dda maintainers
 -- validation_report.lua: runs the paper's Section 2-3 figure scripts and writes
 -- the validation report.
 --

@@ -1,3 +1,5 @@
+-- SPDX-License-Identifier: GPL-3.0-or-later
+-- SPDX-FileCopyrightText: 2026 The dda maintainers
 -- vbc_energy_check.lua: the energy budget of the paper's Fig. 8 bar with a
 -- viscous boundary (VBC) at its right end.
 --

@@ -1,3 +1,5 @@
+-- SPDX-License-Identifier: GPL-3.0-or-later
+-- SPDX-FileCopyrightText: 2026 The dda maintainers
 -- wave.lua: shared runner and measurements for the paper's rock-bar figures
 -- (Sections 2 and 3: scripts/paper/fig*.lua and validation_report.lua).
 --
@@ -46,7 +48,9 @@ local E = wave.E
 -- The time integrator every wave.run without its own `integrator` uses: nil
 -- (Shi's, the paper's), or { integrator = "newmark" | "generalized_alpha",
 -- rho_inf = ..., suffix = "_newmark" } (validation_report.lua's second pass:
--- the suffix keeps that pass's monitors, numbers and plots apart).
+-- the suffix keeps that pass's monitors, numbers and plots apart), or
+-- { default = true, suffix = "_default" [, dt = ...] }: the engine's defaults
+-- for every choice the paper's runs pin (its third pass).
 wave.scheme = nil
 local function suffix() return wave.scheme and wave.scheme.suffix or "" end
 
@@ -74,9 +78,21 @@ function wave.run(o)
   local g0 = (o.g0 or 1) * E
   -- contact_law = "shi": the paper's DDA contact law, which its figures and
   -- docs/validation.md were made with (docs/contacts.md).
+  -- mesh_size = 0: the paper's first-order blocks (the engine would mesh them
+  -- for the pulse, docs/waves.md), unless the rock is given a mesh size; the
+  -- consistent mass the meshed tables were measured with. wave.scheme =
+  -- { default = true }: none of these pinned, the engine's defaults (the
+  -- validation report's third pass).
   local scheme = o.integrator and o or wave.scheme or {}
-  local m = dda.model{ plane = "stress", g0 = g0, g1 = o.dt or 2e-6, g2 = 0.005, gg = 1,
-                       integrator = scheme.integrator or "shi", rho_inf = scheme.rho_inf, contact_law = "shi" }
+  local controls = { plane = "stress", g0 = g0, g1 = o.dt or scheme.dt or 2e-6, g2 = 0.005, gg = 1 }
+  if not scheme.default then
+    controls.integrator = scheme.integrator or "shi"
+    controls.rho_inf = scheme.rho_inf
+    controls.contact_law = "shi"
+    controls.mesh_size = 0
+    controls.mesh_mass = o.mesh_mass or "consistent"
+  end
+  local m = dda.model(controls)
   -- mesh_size: blocks meshed (docs/meshed_blocks.md); kn: the joints' own stiffness (Pa/m).
   local rock = m:rock{ density = bars.rock.density, E = bars.rock.E, nu = o.nu or bars.rock.nu, mesh_size = o.mesh_size }
   local joint = m:joint{ friction = o.phi or 40, cohesion = o.c or 8e6, tension = o.tension or 8e6, kn = o.kn }

@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The dda maintainers
 // A step that neither searches for contacts nor cuts Δt allocates no memory:
 // its buffers (contact iteration states, the system, the PCG's vectors and
 // patches, the partial sums) are sized once and reused. A step allocating on

@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The dda maintainers
 // User errors give dda::Error naming the object and the cause.
 #include <gtest/gtest.h>
 

@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The dda maintainers
 // Checkpoint and restart (world/checkpoint.hpp): a World saved after N steps
 // and loaded into a fresh one continues bit for bit (reference: the same
 // World stepped N + M times straight; tolerance: none, the state hashes are
@@ -53,6 +55,7 @@ World blast() {
   w.controls().gravity = Vec2(0, -9.81);
   w.controls().g0 = 20 * 30e9;
   w.controls().g1 = 1e-5;
+  w.controls().mesh_size = 0;  // first-order blocks under the pulse (docs/waves.md)
   return w;
 }
 

@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The dda maintainers
 // The CHOLMOD factor and solver (solver/cholmod_factor.hpp,
 // solver/cholmod_solver.hpp) on systems the engine assembled for the
 // benchmark brick walls, and the automatic solver choice

@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The dda maintainers
 // The contact laws behind one interface (contact/contact_model.hpp): each
 // control a law declares it does not read changes nothing under it, and the
 // scene the test runs is one in which that control does change the answer

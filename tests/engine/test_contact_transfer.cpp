@@ -1,6 +1,8 @@
-// Contacts that follow large motions (issue 22, item 1): a vertex that slides
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The dda maintainers
+// Contacts that follow large motions: a vertex that slides
 // past the end of an edge transfers to the next edge at that corner or to a
-// vertex-vertex contact (docs/contacts.md, "Contact transfer"), so blocks
+// vertex-vertex contact (docs/contact_transfer.md), so blocks
 // slide down steps, topple and fall onto others without a false penetration
 // stopping the run; and a step that cannot be completed names its deepest
 // contact and a cure that is true. Rigid-block references (closed forms);
@@ -47,7 +49,7 @@ double speed(const World& w, BlockId b) { return w.block_velocity(b).head<2>().n
 
 }  // namespace
 
-// The geometry of the slope that stalled (issue 22): two blocks meet a third
+// The geometry of the slope that stalled: two blocks meet a third
 // at a junction of joints 85° apart, and one slides s = 6.5 cm down the
 // oblique joint past the corner. Its corner then lies on the joint's line, s
 // behind the line of the other block's top face, beside that block, not in
@@ -216,7 +218,7 @@ TEST(ContactTransfer, BlockSlidesDownFrictionlessStepsKeepingItsEnergy) {
 // without stalling and without sinking into a tread beyond the g2 bound.
 //
 // And under "holding" with friction_lag = 3 ms, the block landing on each
-// tread a new interface (docs/contacts.md; measured 1.81280 m/s²). (Under
+// tread a new interface (docs/friction_flutter.md; measured 1.81280 m/s²). (Under
 // "shi" with the lag the block never slides: Shi's model-wide friction band
 // holds it once the lag averages away the odd-even swing of its N.)
 TEST(ContactTransfer, BlockSlidesDownStepsAtTheFrictionRateOnEachFace) {
@@ -400,7 +402,7 @@ TEST(ContactTransfer, StallMessageNamesTheContactAndATrueCure) {
   EXPECT_NO_THROW(for (int i = 0; i < 50; ++i) stiff.step()) << message;
 }
 
-// Aligned corners that slide apart (docs/contacts.md): the scene
+// Aligned corners that slide apart (docs/contact_transfer.md): the scene
 // test::block_sliding_past_aligned_corner. Block A on a fixed base, its
 // bottom-right corner at a joint where the top of a free block B begins (its
 // bottom edge and B's top edge meet end to end: no contact between them),

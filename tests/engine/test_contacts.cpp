@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The dda maintainers
 // Contact detection: a joint between two blocks carries exactly two contacts
 // (k_n = 2·g0/l, the paper's Eq. 4); touching corners of aligned blocks none.
 #include <gtest/gtest.h>
@@ -94,9 +96,9 @@ TEST(Contacts, CornerPokingIntoAnEdgeMakesOneContact) {
 // triangle on the chamber roof and a block right of the chamber, 1 m apart
 // across the chamber's corner. The search range (1.25 m) pairs their
 // vertices; the triangle's corner lies behind the line of one of the other
-// block's edges but far outside the block. Such a pair used to become a
-// locked contact 0.17 m "deep" whose 1.7e10 N spring crushed the triangle
-// (blast(1) died with "the linear solver did not converge").
+// block's edges but far outside the block. Taken as a contact, such a
+// pair is a locked contact 0.17 m "deep" whose 1.7e10 N spring crushes the
+// triangle (blast(1) dies with "the linear solver did not converge").
 TEST(Contacts, VertexBesideAFarCornerIsNotAPenetration) {
   Polys p;
   p.add({{3.4142136, 2.0}, {3.6568542, 2.0}, {3.5355339, 2.1213203}});

@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The dda maintainers
 // The table of controls (world/controls.hpp): the engine checks every control
 // through it (docs/lua_api.md shows it: LuaApiReference.DocsAreTheBindingsOwn).
 #include <gtest/gtest.h>

@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The dda maintainers
 // Motion against closed forms: free fall, a block on an incline, a settled
 // stack; and bit-identical results for any thread count.
 #include <gtest/gtest.h>
@@ -415,7 +417,7 @@ TEST(OpenClose, LooseSolvesUntilStatesHoldGiveTheTightAnswer) {
   EXPECT_LT(statics.cg_loose, statics.cg_tightest);
 }
 
-// Issue 22, item 5: under the holding law a sliding contact's friction
+// Under the holding law a sliding contact's friction
 // iterates to the normal force of the accepted solve, so the plain scheme
 // (every solve tight) and the loose one converge to one answer. Reference:
 // the same wall with every solve at 1e-13 / 1e-14, as above. Measured, 10

@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The dda maintainers
 // The energy budget (world/energy_budget.hpp) against closed forms.
 #include <gtest/gtest.h>
 

@@ -1,4 +1,6 @@
-// Coulomb friction against closed forms (issue 22): a block on an incline
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The dda maintainers
+// Coulomb friction against closed forms: a block on an incline
 // that must hold stays at rest, one that must slide does so at
 // a = g(sin α − cos α tan φ), at every step size, and the same inside a model
 // 100 times larger. Rigid-block references; the blocks are elastic granite
@@ -320,7 +322,7 @@ TEST(Friction, LowerBlockOfASlidingStackHolds) {
   }
 }
 
-// The cut-and-redo path (issue 22, item 6): the incline (30° on 20°) at
+// The cut-and-redo path: the incline (30° on 20°) at
 // Δt = 1e-2 s with g2 = 0.004, so that from t = 0.43 s on the slide outgrows
 // the g2 bound and Δt is cut by three and grows back again and again (47
 // cuts to t = 1 s), against the closed form ½·a·t² at its end time. Reference
@@ -357,10 +359,10 @@ TEST(Friction, CutMidSlideFollowsTheSmallerStepsRun) {
   EXPECT_FALSE(cut.opened);
 }
 
-// Sliding at small steps (issue 22, item 3). Undamped, friction couples the
+// Sliding at small steps. Undamped, friction couples the
 // elastic block's two lowest strain modes (about 4,300 and 5,500 rad/s on
 // their springs) into one that grows (ω ≈ 4,700 rad/s, growth 150 s⁻¹ at
-// φ = 20°, 440 s⁻¹ at 25°: the linearised block, docs/contacts.md); Shi's
+// φ = 20°, 440 s⁻¹ at 25°: the linearised block, docs/friction_flutter.md); Shi's
 // numerical damping, ξ ≈ ωΔt/4, outweighs that only for Δt ≳ 1e-4 s, and
 // Newmark's integrator does not damp at all. The rock's material damping,
 // strain_damping = β = 5e-5 s (ξ = βω/2: 12 % at 4,700 rad/s), holds it
@@ -386,7 +388,7 @@ void expect_damped_slides_at_the_closed_form_rate(double dt, double t_end) {
 // (30° on 20° from a static start: −17 % at 1e-3 s, +1.4 % at 1e-4 s);
 // measured with damping below 5e-6. (At 1e-2 s under Newmark's, gravity on
 // at once rings the contact springs, which the strain damping does not
-// reach: docs/contacts.md, Known limits.)
+// reach: docs/friction_flutter.md.)
 TEST(Friction, StrainDampingSlidesAtTheClosedFormRateAtSmallSteps) {
   for (const double dt : {1e-3, 1e-4, 1e-5}) expect_damped_slides_at_the_closed_form_rate(dt, 0.3);
 }
@@ -396,7 +398,7 @@ TEST(FrictionLong, StrainDampingSlidesAtTheClosedFormRateAtOneMicrosecond) {
   expect_damped_slides_at_the_closed_form_rate(1e-6, 0.1);
 }
 
-// The stack at small steps (issue 22, item 2), with the strain damping of the
+// The stack at small steps, with the strain damping of the
 // tests above: settled first (static analysis, gg = 0, both joints at 20°),
 // then dynamic with the upper joint at 10°. References: the lower block does
 // not slip, bound 1e-10 m between T/3 and T (T = 0.1 s; measured up to 1.0e-11
@@ -440,15 +442,14 @@ TEST(FrictionLong, StrainDampingHoldsTheLowerBlockOfAStackAtOneMicrosecond) {
   expect_stack_holds(1e-6, {Integrator::Shi, Integrator::Newmark}, kStrainDamping, 0);
 }
 
-// The gap decisions' band is in the step's own units too (issue 22, item
-// 4): the incline's block dropped from 1 cm (30° on 20°, Δt = 1e-3 s) lands
-// with its contacts open, closes them, and rocks, opening and closing them
-// again (the open-close iteration does not settle at 30 steps and cuts them).
-// Inside a model 100 times taller (a block fixed 300 m below) it moves the
-// same. Reference: the small model's slip at 0.3 s; bound 1e-9 of it
-// (measured: the same bits). Before, with the gap band contact_tolerance ×
-// half the model's height (1.5e-9 m against 1.5e-7 m there), 0.0566 m
-// against 0.0526 m.
+// The gap decisions' band is in the step's own units too: the incline's
+// block dropped from 1 cm (30° on 20°, Δt = 1e-3 s) lands with its contacts
+// open, closes them, and rocks, opening and closing them again (the
+// open-close iteration does not settle at 30 steps and cuts them). Inside a
+// model 100 times taller (a block fixed 300 m below) it moves the same.
+// Reference: the small model's slip at 0.3 s; bound 1e-9 of it (measured:
+// the same bits). With the gap band contact_tolerance × half the model's
+// height (1.5e-9 m against 1.5e-7 m there) they move 0.0566 m and 0.0526 m.
 // The same with friction_lag = 3 ms (measured 2.3e-10 of the slip apart;
 // with the strength built from the first N over t_r, 2.9e-9).
 TEST(Friction, LandingBlockMovesTheSameInAModelHundredTimesLarger) {
@@ -503,7 +504,7 @@ TEST(Friction, BlockLandingFromAMicrometreSlidesFromItsFirstStep) {
 // bounces (the penalty springs' restitution) and the block rocks on a
 // corner; dropped from 0.98, 0.99, 1.01 or 1.02 m it ends 0.06 to 0.77 m
 // back under either law, and harder landings are thrown back too
-// (docs/contacts.md, Known limits, "A hard landing on a rough face"). With
+// (docs/landings.md, Known limits, "A hard landing on a rough face"). With
 // the landing law (restitution = 0) every height ends where it lands:
 // tests/engine/test_landing.cpp.
 TEST(Friction, BlockLandingOnAFlatFaceFromOneMetreEndsWhereItLands) {
@@ -530,15 +531,15 @@ TEST(Friction, BlockLandingOnAFlatFaceFromOneMetreEndsWhereItLands) {
   }
 }
 
-// Items 2 and 3 of issue 22 under a second-order integrator: generalized-α
+// Holding and sliding under a second-order integrator: generalized-α
 // (Chung & Hulbert; second order at every ρ∞) with the blocks' strain damping
 // and the holding law. Reference: a = g(sin α − cos α tan φ) within 0.1 %,
 // no contact opening after T/3 (T = 0.3 s; 0.1 s at Δt = 1e-6 s); the block
 // on 15° / φ = 20° and the lower block of the stack at rest, bound 1e-10 m of
 // slip between T/3 and T. Strain damping β = 5e-5 s for φ ≤ 25°, 1.5e-4 s at
 // 45° (the friction-induced flutter's threshold on the linearised block,
-// docs/contacts.md). Undamped, every second-order scheme chatters at
-// Δt ≤ 1e-4 s whatever ρ∞ (the grid in docs/contacts.md, "Under the
+// docs/friction_flutter.md). Undamped, every second-order scheme chatters at
+// Δt ≤ 1e-4 s whatever ρ∞ (the grid in docs/friction_flutter.md, "Under the
 // second-order integrators"). With gravity switched on at once ρ∞ = 0: at
 // ρ∞ = 0.5 the contact springs' ringing that the start sets off at
 // Δt = 1e-2 s takes 25.2° / 25° to 9.4e-4 of the closed form and slips the
@@ -624,7 +625,7 @@ TEST(FrictionLong, GeneralizedAlphaWithStrainDampingHoldsAndSlidesAtEveryStepSiz
       expect_generalized_alpha_holds_and_slides(dt, {rho_inf, true});
 }
 
-// Friction that lags the normal force (friction_lag = t_r; docs/contacts.md,
+// Friction that lags the normal force (friction_lag = t_r; docs/friction_flutter.md,
 // "Sliding at small steps"): the friction strength of a contact follows its
 // normal force as dN_f/dt = (N − N_f)/t_r, so the fast swings of N that
 // couple the sliding block's strain modes into a growing one (the chatter of
@@ -669,7 +670,7 @@ TEST(Friction, LaggedFrictionSlidesAtTheClosedFormRateAtEveryStepSize) {
 // the same bound, measured within 4.4e-4 (60° on 45° at 1e-3 s; the others
 // within 5e-7). With gravity switched on at once the contact springs'
 // ringing, which Newmark's rule does not damp, spoils the slide at every Δt
-// (3.4 % off at 1e-2 s; contacts opening from 1e-3 s down: docs/contacts.md),
+// (3.4 % off at 1e-2 s; contacts opening from 1e-3 s down: docs/friction_flutter.md),
 // not the friction's to cure.
 TEST(Friction, LaggedFrictionSlidesAtTheClosedFormRateUnderNewmarkFromAStaticStart) {
   for (const double dt : {1e-2, 1e-3, 1e-4, 1e-5})
@@ -681,7 +682,7 @@ TEST(Friction, LaggedFrictionSlidesAtTheClosedFormRateUnderNewmarkFromAStaticSta
 // step's offset of the sampling times, and the start). With gravity switched
 // on at once 60° on 45° slides closed at 1e-6 s since a landing is a new
 // interface (with the strength built from the first N over t_r, +100 %, a
-// corner opening), but not at 3e-6 s (+82 %, opening: docs/contacts.md,
+// corner opening), but not at 3e-6 s (+82 %, opening: docs/friction_flutter.md,
 // Known limits).
 TEST(FrictionLong, LaggedFrictionSlidesAtTheClosedFormRateAtOneMicrosecond) {
   expect_lagged_slides_at_the_closed_form_rate(1e-6, true, kSlidingAngles);
@@ -714,7 +715,7 @@ TEST(Friction, LaggedFrictionHoldsTheLowerBlockOfAStackAtSmallSteps) {
 
 // A lag much shorter than the step is no lag: with t_r = 1e-6 s at
 // Δt = 1e-3 s the new N's weight, 1 − exp(−1000), is 1 to the last bit, and
-// the slide is today's bit for bit (reference: the run without the control;
+// the slide is the unlagged one bit for bit (reference: the run without the control;
 // tolerance: none, the state hashes are equal).
 TEST(Friction, LagMuchShorterThanTheStepIsNoLag) {
   Incline off(30, 20, 1e-3), lagged(30, 20, 1e-3);
@@ -831,7 +832,7 @@ TEST(Friction, BlockSetSlidingOnAFlatFaceDeceleratesAtTheClosedFormRate) {
 
 // The lagged strength of a new contact is the mean of the N it has carried
 // since it closed, each instant weighted by exp(−(its age)/t_r) and the
-// weights normalised over the contact's life (docs/contacts.md, "A landing is
+// weights normalised over the contact's life (docs/friction_flutter.md, "A contact that closes is
 // a new interface"). Reference: that mean in closed form for N piecewise
 // constant over steps of different Δt,
 //   N_f = Σ_k N_k·(e^(−(T − t_k)/t_r) − e^(−(T − t_{k−1})/t_r)) / (1 − e^(−T/t_r)),

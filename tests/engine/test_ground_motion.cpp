@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The dda maintainers
 // Earthquake input: reading accelerograms, resampling, baseline correction
 // and integration (engine/loading/ground_motion.hpp).
 #include <gtest/gtest.h>
@@ -28,7 +30,7 @@ TEST(GroundMotion, ElCentroArray7PeaksMatchTheHeaderAfterBaselineCorrection) {
   // header gives the peaks as negative; the values in the file have the
   // opposite polarity (largest sample +450.322), so magnitudes are compared.
   // Tolerance 3 % on PGV and PGD after the default correction (a degree-2
-  // polynomial off the velocity), as issue 26 asks; the time of each peak
+  // polynomial off the velocity), the time of each peak
   // exactly on its sample.
   const GroundMotion raw = GroundMotion::read_accelerogram(kElCentro);
   EXPECT_EQ(raw.size(), 1848u);  // 1,845 values and three trailing zeros

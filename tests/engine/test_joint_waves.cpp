@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The dda maintainers
 // Waves across joints against exact solutions, with the second-order time
 // integrator (docs/time_integration.md) and joints given their own
 // stiffness (JointMaterial::normal_stiffness, Pa/m).

@@ -1,5 +1,7 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The dda maintainers
 // The landing law (control `restitution`; contact/landing.hpp,
-// docs/contacts.md "Landings: the impact law") against the rigid-body impact
+// docs/landings.md) against the rigid-body impact
 // law's closed forms: a block that lands leaves its face at e times its
 // approach speed, and its contact points stop if Coulomb's bound on the
 // impulse, μ·(1 + e)·m·v_n, allows, else slide on at v_t − μ(1 + e)v_n; the
@@ -102,7 +104,7 @@ TEST(Landing, FlatBlockWithZeroRestitutionStaysDown) {
   }
 }
 
-// The hard landing of docs/contacts.md's Known limits: a block moving at
+// The hard landing of docs/landings.md's Known limits: a block moving at
 // 2 m/s along a flat face lands on it at v_n = 7.67 m/s (a 3 m drop; here it
 // starts 5 cm above the face at the speed it would have there), φ = 45°,
 // e = 0. Coulomb's bound on the landing's impulse, μ·m·v_n = 7.67 m·m/s,
@@ -140,7 +142,7 @@ TEST(Landing, HardLandingOnARoughFaceEndsWhereItLands) {
 // on. Reference: v_x(t) = v_t − μ(1 + e)v_n − μg(t − t_L), at the end of the
 // landing step (both laws) and at t_L + 0.1 s (`"holding"`: under `"shi"`
 // a block sliding on a face decelerates several times too fast at first,
-// docs/contacts.md, Known limits); tolerance 1e-3 of v_t; v_y below 1 mm/s.
+// docs/landings.md, Known limits); tolerance 1e-3 of v_t; v_y below 1 mm/s.
 TEST(Landing, LowFrictionLandingSlidesOnAtVtLessMuVn) {
   const double mu = std::tan(deg_to_rad(10));
   for (const ContactLaw law : {ContactLaw::Holding, ContactLaw::Shi})

@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The dda maintainers
 // Memory limits as a cluster sets them (core/memory.hpp), read through the
 // test seam: a fake tree of /proc/self/cgroup, /proc/self/mountinfo and the
 // cgroup files under a temporary root. The headroom is the least of

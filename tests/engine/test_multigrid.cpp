@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The dda maintainers
 // The aggregation multigrid preconditioner (solver/multigrid.hpp) on systems
 // the engine assembled for the benchmark brick walls: it must give the direct
 // solution, need far fewer CG iterations than block-Jacobi, be a symmetric

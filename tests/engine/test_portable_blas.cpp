@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The dda maintainers
 // The engine's own dense kernels of the CHOLMOD factor (solver/portable_blas.hpp)
 // against the BLAS and LAPACK definitions, computed naively in long double:
 // every argument combination, sizes across the kernels' block edges (the 4 × 4

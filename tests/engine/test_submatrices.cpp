@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The dda maintainers
 // Sub-matrices: symmetry, the inertia integral against a direct quadrature
 // and its compact products against the full matrix's, and zero elastic
 // energy under rigid-body motion.

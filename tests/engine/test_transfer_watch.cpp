@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The dda maintainers
 // The transfer watch (contact/transfer_watch.hpp) skips the contact-transfer
 // tests (passed_corner, slid_past_end, aligned_edges_slid) while the blocks
 // have not moved by a test's slack. Reference: the tests themselves. A

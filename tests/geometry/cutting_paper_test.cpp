@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The dda maintainers
 // The paper's geometries (paper/reference-numbers.md): the jointed rock bars
 // of Section 2 (Fig. 2, Models 1–3) and the blasting model of Section 4.
 //

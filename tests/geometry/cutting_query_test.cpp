@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The dda maintainers
 // Queries on a BlockSet: blocks containing a point or in a box, edges on a
 // segment or in a box, boundary edges of the domain and of a hole. Checked on
 // the rock bar Model 1 (0.2 m squares, horizontal joints material 1,

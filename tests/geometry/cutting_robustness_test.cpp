@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The dda maintainers
 // Block cutting beyond the paper's cases: non-persistent sets and seeds, tree
 // cutting of dangling joints, T-junctions, tags, slivers, inner loops,
 // near-degenerate joints, bad input, and randomised arrangements.

@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The dda maintainers
 #pragma once
 // Helpers shared by the block-cutting tests: input builders and a check that a
 // BlockSet really tiles the domain minus its holes, computed independently of

@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The dda maintainers
 // Inputs the fuzz targets (fuzz/, docs/robustness.md, "Fuzzing") found crashing or
 // tripping a sanitizer, kept as plain tests: each must now be cut, or
 // refused with a dda::Error naming the item.

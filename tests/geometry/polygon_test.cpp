@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The dda maintainers
 // validate_simple_polygon on outlines the block cutter produces: a block whose
 // side along a joint is interrupted by a notch has two collinear edges, and
 // on an inclined joint their collinearity holds only to rounding. Those must

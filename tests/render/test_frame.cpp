@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The dda maintainers
 // Frames: colours at known places, the colour bar, determinism, options,
 // deformation magnification, concave blocks, and the PNG on disk.
 #include <gtest/gtest.h>

@@ -1,10 +1,12 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The dda maintainers
 // Frames that never mislead: a sequence's colours follow the data unless a
 // range is declared; the colour bar marks the frame's true min and max and
 // grows an arrow end where values pass a set range; the choice is printed;
 // a joint is drawn failed only once it broke (never a cohesionless one).
-// Each of these failed on the renderer as it was before: the range was fixed
-// from the first moving frame (later motion saturated), the bar said nothing
-// of values beyond it, and every cohesionless joint was drawn red from t = 0.
+// Each of these fails on a renderer that fixes the range from the first
+// moving frame (later motion saturates), says nothing on the bar of values
+// beyond it, and draws every cohesionless joint red from t = 0.
 #include <gtest/gtest.h>
 #include <unistd.h>
 

@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The dda maintainers
 // Writing files: unwritable folders, no OpenGL context, the asynchronous
 // writer's error reporting, and frame sequences (numbering, every N steps /
 // every Δt, error policy).

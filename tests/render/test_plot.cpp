@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The dda maintainers
 // History plots: geometry of a known curve, legend, ranges, ticks, errors.
 #include <gtest/gtest.h>
 #include <unistd.h>

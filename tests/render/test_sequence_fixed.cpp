@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The dda maintainers
 // Animation-safe sequences: a block falling 4.9 m must be seen to fall (the
 // view is fixed from the first frame, not re-fitted to the moving block) and
 // a declared colour range must read the same in every frame (its ticks and

@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The dda maintainers
 // The adapter from dda::World: snapshots carry the World's state, remember
 // the start for magnified deformation, and drive a FrameSequence.
 #include <gtest/gtest.h>

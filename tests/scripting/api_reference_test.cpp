@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The dda maintainers
 // The Lua API's documentation cannot drift from the binding: the reference
 // (docs/lua_api*.md) is generated from the tables that register each
 // function, its options, the keys it returns and the types' fields, and

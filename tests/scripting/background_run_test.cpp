@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The dda maintainers
 // Runs in the background (m:start, m:pause, m:resume, m:stop, m:wait,
 // m:running): a run paused and resumed at arbitrary steps, with thread counts
 // that differ, ends bit for bit where the straight run ends (m:hash(): the

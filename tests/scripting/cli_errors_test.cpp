@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The dda maintainers
 // `dda run` on scripts with mistakes: the message names the script, the line,
 // the call and the argument; the exit code is non-zero; CSV files written so
 // far stay readable. Also --set, Ctrl-C and the command line itself.

@@ -1,6 +1,8 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The dda maintainers
 // What a new user gets: scripts/incline.lua run with the engine's defaults
 // (no contact_law set: "holding") against the closed forms of a rigid block
-// on a rigid incline (issue 22's observations, docs/contacts.md, "A new
+// on a rigid incline (docs/contacts.md, "A new
 // user's incline"). The same runs with --set law=shi, Shi's law, the default
 // before, miss both: the tests fail if the default goes back.
 #include <gtest/gtest.h>

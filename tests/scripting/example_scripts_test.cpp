@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The dda maintainers
 // The example scripts in scripts/ run through `dda run` (short versions), and
 // their CSV outputs are checked against closed forms.
 #include <gtest/gtest.h>

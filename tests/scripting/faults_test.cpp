@@ -1,4 +1,6 @@
-// Faults that used to crash the Lua layer (issue 24), each reproduced first:
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The dda maintainers
+// Faults that used to crash the Lua layer, each reproduced first:
 // corrupted bytecode through require, dofile and load segfaulted inside
 // liblua; getmetatable(m).__gc(m) deleted a model that handles still used.
 #include <gtest/gtest.h>

@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The dda maintainers
 // What the engine chooses for a user who sets nothing: the default time step
 // (world/time_step_rule.hpp), settling to equilibrium before a dynamic run
 // (m:settle, world/settle.hpp), and the peaks of vector fields (monitor:ppv,

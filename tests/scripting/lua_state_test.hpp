@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The dda maintainers
 #pragma once
 // A GoogleTest fixture around one in-process Lua state with the dda module:
 // a test's SetUp makes the Session and calls start(); run() and error_of()

@@ -1,3 +1,5 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
+# SPDX-FileCopyrightText: 2026 The dda maintainers
 """Background runs as a person uses them: the console through a pty stays up
 while a run goes on (m:start), refuses changes while it runs, Ctrl-C at the
 prompt pauses it (no step after), changes are taken while paused, m:resume()

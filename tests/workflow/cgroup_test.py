@@ -1,3 +1,5 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
+# SPDX-FileCopyrightText: 2026 The dda maintainers
 """Memory limits as a cluster sets them, with a real cgroup (root only; skipped,
 exit 77, where none can be made): dda runs in a memory cgroup of its own made
 below the one this test runs in (v1's memory hierarchy, or v2 where it has

@@ -1,3 +1,5 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
+# SPDX-FileCopyrightText: 2026 The dda maintainers
 """Shared by the workflow tests: the dda binary (argv[1]), scratch folders,
 running dda, the console through a pty, and plain checks that print what
 failed."""

@@ -1,3 +1,5 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
+# SPDX-FileCopyrightText: 2026 The dda maintainers
 """The console driven as a person would: through a pty (readline: Ctrl-C at
 the prompt, Ctrl-D inside a statement, Tab completion, saved history) and
 through piped input (input ending inside a statement). Each fault was

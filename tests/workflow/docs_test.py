@@ -1,3 +1,5 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
+# SPDX-FileCopyrightText: 2026 The dda maintainers
 """Report scripts write into docs/ only when asked, and never delete rows
 they did not compute: blast_summary.lua run on one joint spacing's folder
 (here an empty one: every run "not run") must leave a copy of docs/ untouched

@@ -1,4 +1,6 @@
-"""The smaller faults of issue 24 (item 9), each reproduced first: an empty
+# SPDX-License-Identifier: GPL-3.0-or-later
+# SPDX-FileCopyrightText: 2026 The dda maintainers
+"""Smaller faults, each reproduced first: an empty
 --threads taken as 0; an unusable frames folder with --frames (or
 on_error = "continue") stopping the run although a failing frame is to be
 reported and the run to go on; a bytecode script and a memory error with

@@ -1,3 +1,5 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
+# SPDX-FileCopyrightText: 2026 The dda maintainers
 """Frames from the command line: --frames FROM:TO:EVERY takes a window of
 steps, and --movie makes a movie when ffmpeg is on the PATH; without ffmpeg
 the run still succeeds and says why there is no movie.

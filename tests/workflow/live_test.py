@@ -1,3 +1,5 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
+# SPDX-FileCopyrightText: 2026 The dda maintainers
 """The live view in a real browser: `dda run SCRIPT --live 0` serves a page
 that headless Chromium (driven through chromedriver's WebDriver, plain HTTP
 and JSON) loads during the run; a screenshot shows the frame and a monitor's

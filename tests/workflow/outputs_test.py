@@ -1,4 +1,6 @@
-"""Outputs that cannot be lost quietly (issue 24, items 1 and 2). Each fault
+# SPDX-License-Identifier: GPL-3.0-or-later
+# SPDX-FileCopyrightText: 2026 The dda maintainers
+"""Outputs that cannot be lost quietly. Each fault
 was reproduced first: before, a full disk truncated the monitor CSV, left a
 torn last row and the run exited 0; os.exit() with frames still queued lost
 frames, crashed (SIGSEGV, the font cache destroyed under the frame-writer

@@ -1,3 +1,5 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
+# SPDX-FileCopyrightText: 2026 The dda maintainers
 """Checkpoint and restart as a user meets them: `dda run --checkpoint-every`,
 `dda run --restart FILE` (a fresh process, 1 or 2 threads) and
 m:save / dda.load continue with the state hash of the straight run (the

@@ -1,3 +1,5 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
+# SPDX-FileCopyrightText: 2026 The dda maintainers
 """A run's traces: plain progress lines when the output is not a terminal
 (as under CI or nohup), and the run log beside the outputs.
 Run: runs_test.py path/to/dda"""

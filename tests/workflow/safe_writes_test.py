@@ -1,3 +1,5 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
+# SPDX-FileCopyrightText: 2026 The dda maintainers
 """Outputs that cannot be redirected, clobber something else or be lost
 (docs/robustness.md), each fault reproduced first: a symbolic link placed at
 out/result.csv.part made dda write through it (overwriting the link's

@@ -1,3 +1,5 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
+# SPDX-FileCopyrightText: 2026 The dda maintainers
 """dda sweep: a grid of 2 x 3 combinations run as separate processes, two at
 a time; one fails on purpose. The summary table must hold one row per
 combination with its status and what the run returned; --task runs one

@@ -1,3 +1,5 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
+# SPDX-FileCopyrightText: 2026 The dda maintainers
 """ParaView output read back with VTK's own XML reader (python3-vtk9): a
 block falls onto a fixed base and slides; every frame's blocks file must hold
 one polygon per block with the values m:blocks() gives, and the contacts file
