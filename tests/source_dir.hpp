@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The dda maintainers
 #pragma once
 // The repository's root, for the tests that read files from it (data/,
 // scripts/). CMake writes it into one generated source (source_dir.cpp.in),
