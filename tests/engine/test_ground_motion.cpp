@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <fstream>
 
+#include "../source_dir.hpp"
 #include "core/error.hpp"
 #include "loading/ground_motion.hpp"
 

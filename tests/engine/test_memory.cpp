@@ -19,6 +19,7 @@
 #include <string>
 
 #include "../scenes.hpp"
+#include "../source_dir.hpp"
 #include "core/error.hpp"
 #include "core/memory.hpp"
 #include "loading/ground_motion.hpp"

@@ -8,6 +8,7 @@
 #include <functional>
 
 #include "../scenes.hpp"
+#include "../source_dir.hpp"
 #include "loading/ground_motion.hpp"
 
 using namespace dda;

@@ -12,6 +12,8 @@
 #include <string>
 #include <vector>
 
+#include "../source_dir.hpp"
+
 namespace dda::test {
 
 inline std::filesystem::path source_dir() {
