@@ -62,6 +62,16 @@ if [ ${#missing[@]} -gt 0 ]; then
   DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}"
 fi
 
+# The live view's browser test: chromedriver reaches Chromium's DevTools at
+# "localhost", which a minimal root (debootstrap, some containers) leaves
+# unnamed without /etc/hosts. Named there only when no line names it.
+if [ $tests = 1 ] && ! grep -qsE '^127\.0\.0\.1[[:space:]].*\blocalhost\b' /etc/hosts; then
+  echo "setup: /etc/hosts names no 127.0.0.1 localhost (the browser test needs it): adding the line"
+  line='127.0.0.1\tlocalhost\n'
+  if [ "$(id -u)" -eq 0 ]; then printf "$line" >> /etc/hosts; else sudo sh -c "printf '$line' >> /etc/hosts"; fi ||
+    echo "setup: could not add it; the browser test (workflow.live) cannot reach Chromium" >&2
+fi
+
 build_dir=${BUILD_DIR:-build}
 jobs=$(nproc)
 if [ $tests = 0 ]; then
