@@ -206,7 +206,9 @@ TEST(TimeIntegration, TheDefaultSchemeHoldsABlockOnAnInclineItsFrictionHolds) {
     w.controls().integrator = integrator;
     const Vec2 start = w.block_centroid(b), down(-std::cos(a), -std::sin(a));
     while (w.time() < 0.5 - 1e-9) w.step();
-    if (integrator == Integrator::Auto) EXPECT_EQ(w.integrator_in_use(), Integrator::Shi);
+    if (integrator == Integrator::Auto) {
+      EXPECT_EQ(w.integrator_in_use(), Integrator::Shi);
+    }
     return (w.block_centroid(b) - start).dot(down);
   };
   EXPECT_LT(std::abs(slip_of(Controls{}.integrator)), 1e-4);
