@@ -46,8 +46,12 @@ c.send('m:gravity(0, -9.81); print("changed")\r')
 check(c.expect("changed") is not None, "a change while paused is taken")
 c.send("m:resume()\r")
 c.expect("dda> ")
-c.send("m:wait()\r")
-time.sleep(1.0)
+# Ctrl-C only once m:wait() runs (a loaded machine can take over a second to
+# read the line; a Ctrl-C before it reaches the prompt instead). The marker is
+# printed by the same line just before the wait; its echo does not hold it.
+c.send('print("wait" .. "ing"); m:wait()\r')
+c.expect("waiting")
+time.sleep(0.5)
 c.send("\x03")
 check(c.expect("the background run is paused") is not None, "Ctrl-C in m:wait() pauses the run and ends the wait")
 c.send("m:stop()\r")
