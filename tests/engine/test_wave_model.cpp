@@ -147,15 +147,24 @@ TEST(WaveModel, TheFixedEndHoldsEveryNodeAfterMeshing) {
   }
 }
 
+namespace {
+
+// The bar as it was built: four first-order blocks, stepped with Shi's scheme.
+void expect_first_order_under_shi(const Bar& bar, const WaveModel& wave) {
+  EXPECT_FALSE(wave.active);
+  EXPECT_EQ(wave.meshed_blocks, 0);
+  EXPECT_EQ(bar.w.block_count(), 4u);
+  EXPECT_EQ(bar.w.integrator_in_use(), Integrator::Shi);
+}
+
+}  // namespace
+
 TEST(WaveModel, BlocksThatResolveTheLoadStayFirstOrder) {
   // A slow pulse (half a sine at 20 Hz: elements of 5.6 m) leaves 1 m
   // blocks as they are, and Shi's scheme.
   Bar bar(History(sine_pulse(20, 0.5)));
   const WaveModel& wave = bar.w.decide_wave_model();
-  EXPECT_FALSE(wave.active);
-  EXPECT_EQ(wave.meshed_blocks, 0);
-  EXPECT_EQ(bar.w.block_count(), 4u);
-  EXPECT_EQ(bar.w.integrator_in_use(), Integrator::Shi);
+  expect_first_order_under_shi(bar, wave);
   EXPECT_TRUE(wave.warnings.empty());
 }
 
@@ -166,10 +175,7 @@ TEST(WaveModel, AMeshBeyondTheBudgetKeepsFirstOrderBlocksAndSaysSo) {
   // size, the count and the controls that mesh them.
   Bar bar(History(sine_pulse(20000, 0.5)));
   const WaveModel& wave = bar.w.decide_wave_model();
-  EXPECT_FALSE(wave.active);
-  EXPECT_EQ(wave.meshed_blocks, 0);
-  EXPECT_EQ(bar.w.block_count(), 4u);
-  EXPECT_EQ(bar.w.integrator_in_use(), Integrator::Shi);
+  expect_first_order_under_shi(bar, wave);
   ASSERT_EQ(wave.warnings.size(), 1u);
   EXPECT_NE(wave.warnings[0].find("needs elements of 0.006 m"), std::string::npos) << wave.warnings[0];
   EXPECT_NE(wave.warnings[0].find("more than the 20000"), std::string::npos) << wave.warnings[0];
