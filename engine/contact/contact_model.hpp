@@ -81,7 +81,11 @@ struct ContactSprings {
   double kn = 0;
   double ks = 0;
 };
-ContactSprings contact_springs(const Contact& c, const ContactParameters& p);
+// (Inline: every check and prediction of every contact asks for them.)
+inline ContactSprings contact_springs(const Contact& c, const ContactParameters& p) {
+  const ContactParameters::Springs k = p.springs(c);
+  return {c.scale * k.kn, c.scale * k.ks};
+}
 
 // What a contact adds to the system for the current iterate: on
 // dn = d0 + en·D and ds = s0 + es·D (contact_kinematics.hpp), a spring kn on

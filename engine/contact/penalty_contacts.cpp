@@ -37,26 +37,17 @@ void PenaltyContacts::check(const ContactParameters& p, const Blocks& blocks) co
   validate_landing_law(p.restitution, p.integrator, blocks);
 }
 
+// The friction lag's memory is not saved: only a commit (an accepted step)
+// and a search (which saves again after it) change it.
 void PenaltyContacts::save_step(std::span<const Contact> contacts) {
   saved_.resize(contacts.size());
-  saved_memory_.resize(contacts.size());
   parallel_for_each(
-      contacts.size(),
-      [&](std::size_t i) {
-        saved_[i] = iteration_state(contacts[i]);
-        saved_memory_[i] = memory_[i];
-      },
-      1024);
+      contacts.size(), [&](std::size_t i) { saved_[i] = iteration_state(contacts[i]); }, 1024);
 }
 
 void PenaltyContacts::restore_step(std::span<Contact> contacts) {
   parallel_for_each(
-      contacts.size(),
-      [&](std::size_t i) {
-        set_iteration_state(contacts[i], saved_[i]);
-        memory_[i] = saved_memory_[i];
-      },
-      1024);
+      contacts.size(), [&](std::size_t i) { set_iteration_state(contacts[i], saved_[i]); }, 1024);
 }
 
 // An attempt's starting point: each contact's shear offset, the normal force

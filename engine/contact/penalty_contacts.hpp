@@ -140,7 +140,6 @@ class PenaltyContacts : public ContactModel {
   std::vector<FrictionMemory> scratch_memory_;  // follow_search's
   // At the start of the step, for a redo.
   std::vector<ContactIterationState> saved_;
-  std::vector<FrictionMemory> saved_memory_;
   double dt_ = 0;  // the attempt's step (s)
   // Whether a contact may hold a lagged friction force (the last commit left
   // one, or the contacts came from elsewhere: a checkpoint, another law).
