@@ -37,12 +37,13 @@ void PenaltyContacts::check(const ContactParameters& p, const Blocks& blocks) co
   validate_landing_law(p.restitution, p.integrator, blocks);
 }
 
-// The friction lag's memory is not saved: only a commit (an accepted step)
-// and a search (which saves again after it) change it.
+// The states are copied by the attempt's first pass over the contacts
+// (start_attempt): nothing changes them before it. The friction lag's memory
+// is not saved: only a commit (an accepted step) and a search (which saves
+// again after it) change it.
 void PenaltyContacts::save_step(std::span<const Contact> contacts) {
   saved_.resize(contacts.size());
-  parallel_for_each(
-      contacts.size(), [&](std::size_t i) { saved_[i] = iteration_state(contacts[i]); }, 1024);
+  save_pending_ = true;
 }
 
 void PenaltyContacts::restore_step(std::span<Contact> contacts) {
@@ -53,16 +54,25 @@ void PenaltyContacts::restore_step(std::span<Contact> contacts) {
 // An attempt's starting point: each contact's shear offset, the normal force
 // of the last accepted solve (the friction of the first solve) and, with
 // friction_lag, its lagged friction normal force and the weight of the new N
-// in it over this attempt's dt.
-void PenaltyContacts::start_attempt(std::span<const Contact> contacts, const ContactLinearisation& lin, double dt) {
+// in it over this attempt's dt; then the first guess from the warm start
+// (predict, below). One pass over the contacts, which also keeps the step's
+// start for a redo after save_step.
+void PenaltyContacts::start_attempt(std::span<Contact> contacts, const ContactLinearisation& lin, double dt,
+                                    const VecX* predicted) {
   iterate_.resize(contacts.size());
   dt_ = dt;
+  if (predicted) measure_step(*predicted);
+  const bool save = save_pending_;
+  save_pending_ = false;
   parallel_for_each(
       contacts.size(),
       [&](std::size_t i) {
-        const Contact& c = contacts[i];
-        iterate_[i] = {lin.offsets[i].s0, c.normal_force, lin.offsets[i].s0, c.state != ContactState::Open,
-                       lagged_friction(memory_[i], c.state, dt, p_.friction_lag)};
+        Contact& c = contacts[i];
+        if (save) saved_[i] = iteration_state(c);
+        ContactIterate& it = iterate_[i];
+        it = {lin.offsets[i].s0, c.normal_force, lin.offsets[i].s0, c.state != ContactState::Open,
+              lagged_friction(memory_[i], c.state, dt, p_.friction_lag)};
+        if (predicted) predict(c, it, lin.gradients[i], lin.offsets[i], *predicted);
       },
       1024);
 }
@@ -163,24 +173,18 @@ bool PenaltyContacts::decide(Contact& c, ContactIterate& it, const JointMaterial
 // warm start, a block landing on a slope (scripts/incline.lua) got an N of a
 // penetration it never reached, and its open-close iteration did not settle
 // in five steps.
-void PenaltyContacts::predict(std::span<Contact> contacts, const ContactLinearisation& lin, const VecX& d) {
-  measure_step(d);
-  parallel_for_each(
-      contacts.size(),
-      [&](std::size_t i) {
-        Contact& c = contacts[i];
-        if (c.intact) return;
-        const ContactIterationState before = iteration_state(c);
-        const ContactIterate iterate = iterate_[i];
-        const ContactMotion m = motion(lin.gradients[i], lin.offsets[i], d, c, iterate);
-        decide(c, iterate_[i], p_.joints[c.joint], p_.tan_friction[c.joint], contact_springs(c, p_), m);
-        if (before.state != ContactState::Open && c.state == ContactState::Open) {
-          set_iteration_state(c, before);
-          iterate_[i] = iterate;
-        }
-        iterate_[i].normal_force = iterate.normal_force;
-      },
-      1024);
+void PenaltyContacts::predict(Contact& c, ContactIterate& it, const ContactGradients& k, const ContactOffsets& o,
+                              const VecX& d) const {
+  if (c.intact) return;
+  const ContactIterationState before = iteration_state(c);
+  const ContactIterate iterate = it;
+  const ContactMotion m = motion(k, o, d, c, iterate);
+  decide(c, it, p_.joints[c.joint], p_.tan_friction[c.joint], contact_springs(c, p_), m);
+  if (before.state != ContactState::Open && c.state == ContactState::Open) {
+    set_iteration_state(c, before);
+    it = iterate;
+  }
+  it.normal_force = iterate.normal_force;
 }
 
 // The springs each contact acts with in this solve (normal on a closed
