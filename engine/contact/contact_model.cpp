@@ -26,10 +26,4 @@ std::unique_ptr<ContactModel> make_contact_model(ContactLaw law) {
   return nullptr;
 }
 
-double deepest_penetration(std::span<const Contact> contacts) {
-  return parallel_max<double>(contacts.size(), 0.0, [&](std::size_t i) {
-    return contacts[i].state == ContactState::Open ? 0.0 : contacts[i].penetration;
-  });
-}
-
 }  // namespace dda

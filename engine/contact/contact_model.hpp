@@ -200,6 +200,9 @@ class ContactModel {
   // Checks a solve d: each contact's state, forces and penetration, and
   // whether another solve is needed.
   virtual NextSolve check_solve(std::span<Contact> contacts, const ContactLinearisation& lin, const VecX& d) = 0;
+  // The deepest penetration of a closed contact at the last check (0: none;
+  // the g2 bound of ControlStep), found in its pass over the contacts.
+  double deepest_penetration() const { return deepest_penetration_; }
 
   // ---- Update (the accepted step d)
   virtual ContactEnergy energy(std::span<const Contact> contacts, const ContactLinearisation& lin,
@@ -228,12 +231,10 @@ class ContactModel {
   ContactParameters p_;
   std::vector<ContactTerms> terms_;  // per contact
   std::vector<char> changed_;        // per contact
+  double deepest_penetration_ = 0;
 };
 
 // The model of a contact law.
 std::unique_ptr<ContactModel> make_contact_model(ContactLaw law);
-
-// The deepest penetration of a closed contact (the g2 bound).
-double deepest_penetration(std::span<const Contact> contacts);
 
 }  // namespace dda

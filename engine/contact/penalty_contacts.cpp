@@ -2,6 +2,7 @@
 // SPDX-FileCopyrightText: 2026 The dda maintainers
 #include "contact/penalty_contacts.hpp"
 
+#include <algorithm>
 #include <atomic>
 #include <cmath>
 
@@ -11,6 +12,24 @@
 #include "core/parallel.hpp"
 
 namespace dda {
+
+namespace {
+// parallel_max's pattern for a result of one's own: fold(i, acc) folds item
+// i into acc, join(a, b) joins two partial results; neither may depend on
+// the order (maxima, flags), so that the result is the same on any thread
+// count.
+template <typename T, typename Fold, typename Join>
+T parallel_fold(std::size_t n, T init, Fold&& fold, Join&& join) {
+  return tbb::parallel_reduce(
+      tbb::blocked_range<std::size_t>(0, chunk_count(n), 1), init,
+      [&](const tbb::blocked_range<std::size_t>& chunks, T acc) {
+        const std::size_t end = std::min(n, chunks.end() * kChunk);
+        for (std::size_t i = chunks.begin() * kChunk; i < end; ++i) fold(i, acc);
+        return acc;
+      },
+      join);
+}
+}  // namespace
 
 PenaltyContacts::PenaltyContacts() : landing_(std::make_unique<LandingLaw>()) {}
 PenaltyContacts::~PenaltyContacts() = default;
@@ -219,7 +238,11 @@ NextSolve PenaltyContacts::check_solve(std::span<Contact> contacts, const Contac
   measure_step(d);
   std::atomic<bool> any_friction{false};  // a sliding contact's N moved
   std::atomic<bool> any_gross{false};     // ... grossly
-  const int any_changed = parallel_max<int>(nc, 0, [&](std::size_t i) {
+  struct Found {
+    int changed = 0;     // 2: a state changed, 1: friction alone moved
+    double deepest = 0;  // the deepest penetration of a closed contact
+  };
+  const auto check = [&](std::size_t i) {
     Contact& c = contacts[i];
     ContactIterate& it = iterate_[i];
     const ContactSprings springs = contact_springs(c, p_);
@@ -247,10 +270,20 @@ NextSolve PenaltyContacts::check_solve(std::span<Contact> contacts, const Contac
                         : 0.0;
     if (friction_moved) any_friction.store(true, std::memory_order_relaxed);
     return changed ? 2 : friction_moved ? 1 : 0;
-  });
+  };
+  const Found found = parallel_fold(
+      nc, Found{},
+      [&](std::size_t i, Found& f) {
+        f.changed = std::max(f.changed, check(i));
+        if (contacts[i].state != ContactState::Open) f.deepest = std::max(f.deepest, contacts[i].penetration);
+      },
+      [](const Found& a, const Found& b) {
+        return Found{std::max(a.changed, b.changed), std::max(a.deepest, b.deepest)};
+      });
+  deepest_penetration_ = found.deepest;
   // States that changed always call for another solve; friction alone as
   // the law says.
-  const bool states_changed = any_changed == 2;
+  const bool states_changed = found.changed == 2;
   const NextSolve for_friction =
       any_friction.load(std::memory_order_relaxed)
           ? solve_again_for_friction(any_gross.load(std::memory_order_relaxed), states_changed)

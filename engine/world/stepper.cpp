@@ -405,7 +405,7 @@ Rejection Stepper::check_motion(const WorldState& w) {
   const double range = detection_.range(c.contact_range, 2.5 * c.g2 * w.half_height);
   if (motion_.largest_displacement > range / 2.5) return Rejection::BeyondContactRange;
   if (motion_.inverted_block >= 0) return Rejection::BlockInverted;
-  if (deepest_penetration(w.contacts) > bound) return Rejection::PenetrationTooDeep;
+  if (contact_model_->deepest_penetration() > bound) return Rejection::PenetrationTooDeep;
   return Rejection::None;
 }
 
