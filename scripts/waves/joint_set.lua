@@ -237,8 +237,8 @@ if dda.has_render and figure ~= "" then
   if #series > 0 then
     series[#series].name = "exact (transfer matrices)"   -- one legend entry for the black lines
     dda.plot{ file = figure, series = series, title = "P wave across N joints: |T| (case named at 1000 Hz)",
-              x_label = "frequency", x_unit = "Hz", y_label = "|T|", width = 1000, height = 600,
-              y_range = {0, 1.05}, legend = "bottom_left" }
+              x_label = "frequency", x_unit = "Hz", y_label = "|T|", width = 1000, height = 700,
+              y_range = {-0.4, 1.05}, legend = "bottom_left" }
   end
 end
 
