@@ -27,7 +27,7 @@
 --          the transfer-matrix |T_N| of Cai & Zhao (2000).
 -- Run:     build/dda run scripts/waves/joint_set.lua [--set counts=1,2,3,5,10]
 --                   [--set spacings=0.05,0.25,1] [--set stiffnesses=0.5,2,20]
---                   [--set cases=N:s:k,...] [--set dt=1e-5] [--set check=true]
+--                   [--set cases=N:s:k,...] [--set dt=1e-5] [--set mesh_size=-1] [--set check=true]
 --                   [--set tolerance=2] [--set max_sensitivity=20] [--set figure=joint_set.png]
 -- Writes:  out/joint_set.csv: N, spacing/lambda, kn/(omega Z/2), |T| ours, exact,
 --          the difference (%), d ln|T| / d ln c (below), checked or not,
@@ -51,6 +51,7 @@ local f_ref = 1000                       -- Hz: the frequency a case is named at
 local lambda = c / f_ref
 local height = 0.1                       -- m
 local dt = dda.param("dt", 1e-5)
+local mesh_size = dda.param("mesh_size", -1)   -- m: elements of this size instead of the engine's (-1)
 local check = dda.param("check", false)
 local tolerance = dda.param("tolerance", 2)
 local figure = tostring(dda.param("figure", "joint_set.png"))
@@ -123,7 +124,7 @@ local function run(case)
   local x_last = x_first + (case.n - 1) * s
   local x_b = x_last + 0.5
   local length = x_b + 0.5
-  local m = dda.model{ plane = "stress", g1 = dt, g2 = 0.01, gg = 1 }
+  local m = dda.model{ plane = "stress", g1 = dt, g2 = 0.01, gg = 1, mesh_size = mesh_size }
   local rock = m:rock{ density = rho, E = E, nu = 0 }
   local joint = m:joint{ friction = 40, cohesion = 1e12, tension = 1e12, kn = kn }   -- no slip, no opening
   m:domain{ box = {0, 0, length, height}, rock = rock }
