@@ -124,7 +124,7 @@ local function run(case)
   local x_last = x_first + (case.n - 1) * s
   local x_b = x_last + 0.5
   local length = x_b + 0.5
-  local m = dda.model{ plane = "stress", g1 = dt, g2 = 0.01, gg = 1, mesh_size = mesh_size }
+  local m = dda.model{ plane = "stress", g1 = dt, mesh_size = mesh_size }
   local rock = m:rock{ density = rho, E = E, nu = 0 }
   local joint = m:joint{ friction = 40, cohesion = 1e12, tension = 1e12, kn = kn }   -- no slip, no opening
   m:domain{ box = {0, 0, length, height}, rock = rock }
