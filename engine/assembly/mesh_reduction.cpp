@@ -89,6 +89,7 @@ void MeshedSolver::set_blocks(const Blocks& blocks) {
     if (node_start_[n] == node_start_[n + 1])
       throw Error(msg("mesh node ", n, " belongs to no element (a meshed block lost an element)"));
   node_base_ = node_base;
+  element_force_.resize(blocks_);
   if (group_mesh_ != blocks.mesh) set_up_mesh_groups(blocks);
 }
 
@@ -251,20 +252,21 @@ void MeshedSolver::restrict(const VecX& f, VecX& y) const {
   y.tail(size_ - unknowns_).setZero();
   parallel_for_each(
       blocks_,
-      [&](std::size_t b) {
-        if (offset_[b] >= 0) y.segment<6>(offset_[b]) = f.segment<6>(6 * b);
+      [&](std::size_t bi) {
+        const int b = static_cast<int>(bi);
+        if (offset_[b] >= 0)
+          y.segment<6>(offset_[b]) = f.segment<6>(6 * b);
+        else
+          element_force_[b] = shape_[b].transpose_times(f.segment<6>(6 * b));
       },
       256);
-  // Each node sums its elements' corner forces in element order, computed
-  // where they are summed: no pass that stores every element's nodal forces
-  // first (the product waits for memory more than for arithmetic).
   parallel_for_each(
       nodes_,
       [&](std::size_t n) {
         Vec2 sum = Vec2::Zero();
         for (int i = node_start_[n]; i < node_start_[n + 1]; ++i) {
           const auto [e, k] = node_corner_[i];
-          sum += shape_[e].corner_force(k, f.data() + 6 * e);
+          sum += element_force_[e].segment<2>(2 * k);
         }
         y.segment<2>(node_base_ + 2 * n) = sum;
       },

@@ -49,11 +49,14 @@ struct ElementShape {
     }
     return a;
   }
-  // Corner k's rows of A_eᵀ·f: the nodal force at corner k of a
-  // generalised force f on the element.
-  Vec2 corner_force(int k, const double* f) const {
-    return {alpha[k] * f[0] - gamma[k] / 2 * f[2] + beta[k] * f[3] + gamma[k] * f[5],
-            alpha[k] * f[1] + beta[k] / 2 * f[2] + gamma[k] * f[4] + beta[k] * f[5]};
+  // A_eᵀ·f: the nodal forces of a generalised force f on the element.
+  Vec6 transpose_times(const Vec6& f) const {
+    Vec6 u;
+    for (int k = 0; k < 3; ++k) {
+      u[2 * k] = alpha[k] * f[0] - gamma[k] / 2 * f[2] + beta[k] * f[3] + gamma[k] * f[5];
+      u[2 * k + 1] = alpha[k] * f[1] + beta[k] / 2 * f[2] + gamma[k] * f[4] + beta[k] * f[5];
+    }
+    return u;
   }
 };
 
@@ -89,7 +92,7 @@ class MeshedSolver final : public LinearSolver {
 
  private:
   void expand(const VecX& y, VecX& d) const;    // d = P·y
-  void restrict(const VecX& f, VecX& y) const;  // y = Pᵀ·f
+  void restrict(const VecX& f, VecX& y) const;  // y = Pᵀ·f (uses scratch element_force_)
   void apply(const VecX& y, VecX& out);         // out = Pᵀ S P y
   void set_up_preconditioner();
   void precondition(const VecX& r, VecX& z) const;
@@ -135,6 +138,7 @@ class MeshedSolver final : public LinearSolver {
   std::vector<int> group_mesh_;    // the blocks' mesh ids the groups were made for
   bool refactor_ = true;
   int factorisations_ = 0;  // so far; each factorises every meshed block (SolveReport::factorisations)
+  mutable std::vector<Vec6> element_force_;
   VecX d_, s_d_, br_, xr_, r_, z_, p_, q_;
 };
 
