@@ -49,8 +49,9 @@ local E = wave.E
 -- (Shi's, the paper's), or { integrator = "newmark" | "generalized_alpha",
 -- rho_inf = ..., suffix = "_newmark" } (validation_report.lua's second pass:
 -- the suffix keeps that pass's monitors, numbers and plots apart), or
--- { default = true, suffix = "_default" [, dt = ...] }: the engine's defaults
--- for every choice the paper's runs pin (its third pass).
+-- { default = true, suffix = "_default" [, dt = ...] [, nu = ...] }: the
+-- engine's defaults for every choice the paper's runs pin (its third pass;
+-- nu = 0 makes the bar the 1-D rod of the exact answer).
 wave.scheme = nil
 local function suffix() return wave.scheme and wave.scheme.suffix or "" end
 
@@ -94,7 +95,8 @@ function wave.run(o)
   end
   local m = dda.model(controls)
   -- mesh_size: blocks meshed (docs/meshed_blocks.md); kn: the joints' own stiffness (Pa/m).
-  local rock = m:rock{ density = bars.rock.density, E = bars.rock.E, nu = o.nu or bars.rock.nu, mesh_size = o.mesh_size }
+  local rock = m:rock{ density = bars.rock.density, E = bars.rock.E, nu = o.nu or scheme.nu or bars.rock.nu,
+                       mesh_size = o.mesh_size }
   local joint = m:joint{ friction = o.phi or 40, cohesion = o.c or 8e6, tension = o.tension or 8e6, kn = o.kn }
   local blocks = bars.build(m, model, rock, joint)
   local fn, dur, t_comp, t_tens = wave.load(o.load or "half", freq, amp)
