@@ -200,6 +200,10 @@ void decide_wave_model_once(lua_State* L, ScriptModel& m, const RunPlan& plan) {
   Session& s = session(L);
   for (const std::string& note : wave.notes)
     if (s.log.is_open()) s.log.line("wave model: " + note);
+  // The default rule reads the smallest block: after meshing, the elements'
+  // (the line logged with the controls was the blocks' before).
+  if (s.log.is_open() && wave.meshed_blocks > 0 && !(w.controls().g1 > 0))
+    s.log.line("time step: after meshing, the default rule (docs/time_step.md): " + w.default_time_step().describe());
   for (const std::string& warning : wave.warnings) warn(warning);
 }
 

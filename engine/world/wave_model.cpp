@@ -32,19 +32,47 @@ bool automatic(const WorldState& w, BlockId b) {
   return !w.blocks.is_element(b) && w.rocks[w.blocks.material[b]].mesh_size <= 0 && w.controls.mesh_size < 0;
 }
 
+bool any_automatic(const WorldState& w) {
+  for (std::size_t b = 0; b < w.blocks.count(); ++b)
+    if (automatic(w, static_cast<BlockId>(b))) return true;
+  return false;
+}
+
 std::string figure(double v) { return msg(std::round(v * 1000) / 1000); }
 
+// The longest side of the box around every block: how far a wave can travel
+// in the model.
+double model_extent(const Blocks& blocks) {
+  Vec2 lo(INFINITY, INFINITY), hi(-INFINITY, -INFINITY);
+  for (std::size_t b = 0; b < blocks.count(); ++b)
+    for (const Vec2& v : blocks.outline(static_cast<BlockId>(b))) {
+      lo = lo.cwiseMin(v);
+      hi = hi.cwiseMax(v);
+    }
+  return blocks.count() > 0 ? (hi - lo).maxCoeff() : 0.0;
+}
+
 // Per block, the mesh size that resolves `frequency` (0: none), budget aside.
+// The automatic blocks are meshed where a block is larger than that size, and
+// also, each into the few elements of its outline, where the model spans a
+// shear wavelength or more: a wave then travels through a chain of blocks,
+// and a first-order block sends a wrong-sign lobe ahead of it whatever the
+// block's size (its strain modes' inertia; at stiff joints the lobe's height
+// does not shrink with the block, docs/block_mass.md), where lumped-mass
+// elements send none. A model shorter than the wavelength moves as a body (a
+// block sliding on its base under an earthquake): its blocks stay as they are.
 std::vector<double> resolving_meshes(const WorldState& w, double frequency) {
   const std::size_t n = w.blocks.count();
   std::vector<double> size(n, 0.0);
   if (!(frequency > 0)) return size;
+  const double extent = model_extent(w.blocks);
   bool needed = false;
   for (std::size_t b = 0; b < n; ++b) {
     const BlockId id = static_cast<BlockId>(b);
     if (!automatic(w, id)) continue;
     size[b] = wave_element_size(w.rocks[w.blocks.material[b]], frequency);
-    needed = needed || longest_edge(w.blocks, id) > size[b] * (1 + 1e-9);
+    const double wavelength = kElementsPerWavelength * size[b];
+    needed = needed || longest_edge(w.blocks, id) > size[b] * (1 + 1e-9) || extent >= wavelength;
   }
   if (!needed) size.assign(n, 0.0);
   return size;
@@ -109,9 +137,12 @@ WaveModel choose_wave_model(const WorldState& w, const LoadFrequency& load) {
                           std::llround(elements), " elements)"));
   else if (meshed_by_hand)
     m.notes.push_back(msg(head, ": the blocks meshed as the script says"));
+  else if (!any_automatic(w))
+    m.notes.push_back(msg(head, ": first-order blocks kept, as mesh_size says"));
   else
     m.notes.push_back(msg(head, ": every block (the largest edge ", figure(largest_block), " m) is within the ",
-                          figure(h_min), " m that resolves it; first-order blocks kept"));
+                          figure(h_min), " m that resolves it and the model (", figure(model_extent(w.blocks)),
+                          " m across) within a shear wavelength; first-order blocks kept"));
   if (m.active && c.mesh_mass == MeshMass::Auto && c.integrator == Integrator::Auto)
     m.notes.push_back(
         "the elements' mass lumped at their corners and Newmark's average acceleration: no "
@@ -132,12 +163,12 @@ WaveModel choose_wave_model(const WorldState& w, const LoadFrequency& load) {
   }
 
   // Choices by hand that carry a precursor or under-resolve the load.
-  if (c.mesh_size == 0 && largest_block > h_min * (1 + 1e-9))
+  if (c.mesh_size == 0)
     m.warnings.push_back(msg("mesh_size = 0 keeps first-order blocks (the largest edge ", figure(largest_block),
                              " m) under a dynamic load of ", figure(f), " Hz, which needs elements of ", figure(h_min),
-                             " m: first-order blocks send a wrong-sign lobe of 2-16 % (Shi's scheme) to 4-23 % "
-                             "(newmark) of the amplitude ahead of each pulse (docs/waves.md, \"The precursor\"); "
-                             "leave mesh_size out to mesh them"));
+                             " m: first-order blocks of any size send a wrong-sign lobe of 2-16 % (Shi's scheme) "
+                             "to 4-23 % (newmark) of the amplitude ahead of each pulse (docs/waves.md, \"The "
+                             "precursor\"); leave mesh_size out to mesh them"));
   for (std::size_t r = 0; r < w.rocks.size(); ++r) {
     const double hand = w.rocks[r].mesh_size > 0 ? w.rocks[r].mesh_size : c.mesh_size;
     const double need = wave_element_size(w.rocks[r], f);

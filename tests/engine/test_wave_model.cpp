@@ -159,13 +159,34 @@ void expect_first_order_under_shi(const Bar& bar, const WaveModel& wave) {
 
 }  // namespace
 
-TEST(WaveModel, BlocksThatResolveTheLoadStayFirstOrder) {
-  // A slow pulse (half a sine at 20 Hz: elements of 5.6 m) leaves 1 m
-  // blocks as they are, and Shi's scheme.
+TEST(WaveModel, AModelWithinAWavelengthKeepsItsFirstOrderBlocks) {
+  // A slow pulse (half a sine at 20 Hz: elements of 5.6 m, a shear
+  // wavelength of 67 m) leaves the 4 m bar's 1 m blocks as they are, and
+  // Shi's scheme: the bar moves as a body.
   Bar bar(History(sine_pulse(20, 0.5)));
   const WaveModel& wave = bar.w.decide_wave_model();
   expect_first_order_under_shi(bar, wave);
   EXPECT_TRUE(wave.warnings.empty());
+}
+
+TEST(WaveModel, BlocksWithinTheElementSizeAreMeshedWhereTheModelSpansAWavelength) {
+  // Half a sine at 800 Hz: 99 % of its energy below 1892 Hz, elements of
+  // 0.139 m, a shear wavelength of 1.67 m. A bar of forty 0.1 m blocks
+  // (4 m) spans it: each block, within the element size, is meshed into
+  // the four elements of its outline, under lumped mass and Newmark.
+  World w;
+  w.controls().g1 = 2e-6;
+  const int rock = w.add_rock_material(RockMaterial{2000, 50e9, 0.25});
+  for (int i = 0; i < 40; ++i) w.add_block(test::rectangle(0.1 * i, 0, 0.1, 0.1), rock);
+  const int load = w.add_pressure_load({EdgeRef{0, 3}});
+  w.set_pressure_history(load, History(sine_pulse(800, 0.5)));
+  const WaveModel& wave = w.decide_wave_model();
+  EXPECT_TRUE(wave.active);
+  EXPECT_EQ(wave.meshed_blocks, 40);
+  EXPECT_NEAR(wave.element_size, 0.139, 5e-4);
+  EXPECT_EQ(w.block_count(), 40u * 4u);
+  EXPECT_EQ(w.integrator_in_use(), Integrator::Newmark);
+  EXPECT_EQ(w.mesh_mass_in_use(), MeshMass::Lumped);
 }
 
 TEST(WaveModel, AMeshBeyondTheBudgetKeepsFirstOrderBlocksAndSaysSo) {
