@@ -13,17 +13,10 @@ void assemble_contact_rows(std::span<const Contact> contacts, const ContactLinea
                            bool all_rows, ContactOperator& system, VecX& rhs, std::vector<char>& row_reassembled) {
   const int n = system.rows();
   rhs.resize(6 * n);
-  // The springs each contact acts with in this solve.
-  parallel_for_each(
-      contacts.size(),
-      [&](std::size_t i) {
-        ContactOperator::Springs& k = system.springs(static_cast<int>(i));
-        k.kn = terms[i].kn;
-        k.ks = terms[i].ks;
-      },
-      1024);
   // Each block row is gathered by one task, adding its contacts in contact
-  // order: no races, and the same sums whatever the thread count.
+  // order: no races, and the same sums whatever the thread count. The task
+  // of a contact's vertex block also hands the operator the springs it acts
+  // with in this solve.
   row_reassembled.resize(n);
   parallel_for_each(
       n,
@@ -40,11 +33,14 @@ void assemble_contact_rows(std::span<const Contact> contacts, const ContactLinea
           follows = follows || terms[row[r]].follows_iterate;
         }
         row_reassembled[b] = matrix_too || follows;
+        // (A kept row's contacts keep their springs too: a contact's springs
+        // change only with its state, and a change reassembles both its rows.)
         if (!matrix_too && !follows) return;
         Symmetric6 diag = own.k[b];
         Vec6 f = own.f[b];
         for (const int i : row) {
           const ContactTerms& t = terms[i];
+          if (contacts[i].vblock == b) system.springs(i) = {t.kn, t.ks};
           if (!t.acts) continue;
           const ContactGradients& k = lin.gradients[i];
           const bool is_vertex_block = contacts[i].vblock == b;

@@ -34,15 +34,20 @@ void ContactDetection::widen_automatic_range(double largest_displacement) {
   auto_range_ = std::max(2.0 * auto_range_, 2.5 * 1.5 * largest_displacement);
 }
 
-bool ContactDetection::list_is_stale(const Blocks& blocks, double range) const {
-  if (detected_vertices_.size() != blocks.vertices.size()) return true;
+bool ContactDetection::follow_motion(const Blocks& blocks, const BlockPolygons& polys, double range) {
+  const bool reshaped = watch_.start_over_if_reshaped(polys);
+  const bool searched_here = detected_vertices_.size() == blocks.vertices.size();
   const double allowed = 0.5 * (kSearchFactor - 1.0) * range;
-  const double moved = parallel_max<double>(blocks.vertices.size(), 0.0, [&](std::size_t v) {
-    return (blocks.vertices[v] - detected_vertices_[v]).squaredNorm();
-  });
-  const double turned =
-      parallel_max<double>(blocks.count(), 0.0, [&](std::size_t b) { return std::abs(rotation_since_detection_[b]); });
-  return moved > allowed * allowed || turned > kRedetectRotation || detected_range_ != range;
+  const bool moved_far =
+      parallel_max<int>(blocks.count(), 0, [&](std::size_t b) {
+        if (!reshaped) watch_.follow_block(polys, b);
+        if (!searched_here) return 0;
+        double moved = 0;  // the largest squared vertex motion since the search
+        for (int v = blocks.vertex_start[b]; v < blocks.vertex_start[b + 1]; ++v)
+          moved = std::max(moved, (blocks.vertices[v] - detected_vertices_[v]).squaredNorm());
+        return moved > allowed * allowed || std::abs(rotation_since_detection_[b]) > kRedetectRotation ? 1 : 0;
+      }) != 0;
+  return !searched_here || moved_far || detected_range_ != range;
 }
 
 bool ContactDetection::detect(const Blocks& blocks, double range, std::vector<Contact>& contacts,
@@ -59,17 +64,20 @@ bool ContactDetection::detect(const Blocks& blocks, double range, std::vector<Co
   // vertex-vertex contact (docs/contact_transfer.md). So are
   // aligned edges slid past each other's corner: their contacts are missing
   // or too weak (narrow_phase.hpp). The watch tests only what can have
-  // changed since its last test (transfer_watch.hpp).
-  watch_.follow(polys);
-  const bool left_an_edge = watch_.left_an_edge(polys, contacts);
-  const bool aligned_slid = watch_.aligned_slid(polys, aligned_);
-  if (!left_an_edge && !aligned_slid && !list_is_stale(blocks, range)) {
-    // Same contacts: refresh their linearisation from the current geometry.
+  // changed since its last test (transfer_watch.hpp). (After a search the
+  // watch starts over: a stale list skips its tests.)
+  if (!follow_motion(blocks, polys, range) && !watch_.aligned_slid(polys, aligned_)) {
+    // Same contacts unless a vertex left its edge: refresh their
+    // linearisation from the current geometry, and test them, in one pass
+    // (the refresh is lost only when the list is searched again).
     lin.gradients.resize(contacts.size());
     lin.offsets.resize(contacts.size());
-    parallel_for_each(
-        contacts.size(), [&](std::size_t i) { contacts[i].penetration = linearise(i, contacts[i]).d0; }, 256);
-    return false;
+    watch_.watch_contacts(contacts);
+    const bool left_an_edge = parallel_max<int>(contacts.size(), 0, [&](std::size_t i) {
+                                contacts[i].penetration = linearise(i, contacts[i]).d0;
+                                return watch_.left_its_edge(polys, contacts[i], i) ? 1 : 0;
+                              }) != 0;
+    if (!left_an_edge) return false;
   }
   NarrowPhaseSettings settings;
   settings.range = kSearchFactor * range;
@@ -123,7 +131,7 @@ void ContactDetection::check_loaded(const LoadCheck& check, const Blocks& blocks
       std::isfinite(auto_range_) && auto_range_ >= 0 && std::isfinite(detected_range_) && detected_range_ >= 0,
       "its contact range is ", auto_range_, " (searched with ", detected_range_, ")");
   check.all_finite(detected_vertices_, "searched vertex");
-  // list_is_stale reads the rotations when the vertices match the blocks'.
+  // follow_motion reads the rotations when the vertices match the blocks'.
   if (detected_vertices_.size() == blocks.vertices.size())
     check.size(rotation_since_detection_.size(), blocks.count(), "blocks", "the rotations since the search");
   check.all_finite(rotation_since_detection_, "rotation since the search of block");

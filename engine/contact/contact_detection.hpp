@@ -72,7 +72,10 @@ class ContactDetection {
   void check_loaded(const LoadCheck& check, const Blocks& blocks) const;
 
  private:
-  bool list_is_stale(const Blocks& blocks, double range) const;
+  // Follows the blocks' motion for the watch and says whether the list is
+  // stale (vertices moved or blocks turned too far since the search, or
+  // another range): one pass over the blocks.
+  bool follow_motion(const Blocks& blocks, const BlockPolygons& polys, double range);
 
   double auto_range_ = 0;        // the automatic contact range so far (only widens)
   bool first_detection_ = true;  // contacts found before the first step are intact joints

@@ -26,15 +26,4 @@ std::unique_ptr<ContactModel> make_contact_model(ContactLaw law) {
   return nullptr;
 }
 
-ContactSprings contact_springs(const Contact& c, const ContactParameters& p) {
-  const ContactParameters::Springs k = p.springs(c);
-  return {c.scale * k.kn, c.scale * k.ks};
-}
-
-double deepest_penetration(std::span<const Contact> contacts) {
-  return parallel_max<double>(contacts.size(), 0.0, [&](std::size_t i) {
-    return contacts[i].state == ContactState::Open ? 0.0 : contacts[i].penetration;
-  });
-}
-
 }  // namespace dda

@@ -13,8 +13,9 @@
 //                                  per-contact history follows each contact
 //                                  by its identity
 //   step start      save_step      what a redo of the step restores
-//   attempt         start_attempt  the attempt's starting point (Δt)
-//   PredictStates   predict        a first guess from the warm start
+//   PredictStates   start_attempt  the attempt's starting point (Δt) and,
+//                                  in wave problems, a first guess of the
+//                                  states from the warm start
 //   Assemble        contribute     what each contact adds to the system for
 //                                  the current iterate: springs on the
 //                                  diagonal, forces on the right-hand side
@@ -81,7 +82,11 @@ struct ContactSprings {
   double kn = 0;
   double ks = 0;
 };
-ContactSprings contact_springs(const Contact& c, const ContactParameters& p);
+// (Inline: every check and prediction of every contact asks for them.)
+inline ContactSprings contact_springs(const Contact& c, const ContactParameters& p) {
+  const ContactParameters::Springs k = p.springs(c);
+  return {c.scale * k.kn, c.scale * k.ks};
+}
 
 // What a contact adds to the system for the current iterate: on
 // dn = d0 + en·D and ds = s0 + es·D (contact_kinematics.hpp), a spring kn on
@@ -178,12 +183,14 @@ class ContactModel {
   virtual void restore_step(std::span<Contact> contacts) = 0;
 
   // ---- An attempt at the step (Δt = dt)
-  virtual void start_attempt(std::span<const Contact> contacts, const ContactLinearisation& lin, double dt) = 0;
   // The Δt of the step the warm start extrapolates from (the last accepted
   // one's, `last_dt`, 0 before the first step; or this attempt's).
   virtual double warm_start_dt(double last_dt, double dt) const = 0;
-  // A first guess of the contacts' states from the warm start d.
-  virtual void predict(std::span<Contact> contacts, const ContactLinearisation& lin, const VecX& d) = 0;
+  // The attempt's starting point and, given a warm start (`predicted`: the
+  // displacement it extrapolates to; null: no guess), a first guess of the
+  // contacts' states from it: one pass over the contacts.
+  virtual void start_attempt(std::span<Contact> contacts, const ContactLinearisation& lin, double dt,
+                             const VecX* predicted) = 0;
   // What each contact adds to the system for the current iterate (terms()),
   // and which contacts changed since the last contribution (changed(); read
   // only when not every row is gathered).
@@ -193,6 +200,9 @@ class ContactModel {
   // Checks a solve d: each contact's state, forces and penetration, and
   // whether another solve is needed.
   virtual NextSolve check_solve(std::span<Contact> contacts, const ContactLinearisation& lin, const VecX& d) = 0;
+  // The deepest penetration of a closed contact at the last check (0: none;
+  // the g2 bound of ControlStep), found in its pass over the contacts.
+  double deepest_penetration() const { return deepest_penetration_; }
 
   // ---- Update (the accepted step d)
   virtual ContactEnergy energy(std::span<const Contact> contacts, const ContactLinearisation& lin,
@@ -221,12 +231,10 @@ class ContactModel {
   ContactParameters p_;
   std::vector<ContactTerms> terms_;  // per contact
   std::vector<char> changed_;        // per contact
+  double deepest_penetration_ = 0;
 };
 
 // The model of a contact law.
 std::unique_ptr<ContactModel> make_contact_model(ContactLaw law);
-
-// The deepest penetration of a closed contact (the g2 bound).
-double deepest_penetration(std::span<const Contact> contacts);
 
 }  // namespace dda

@@ -73,8 +73,9 @@ double contact_slack(double tolerance, double motion, double edge_length) {
 
 std::span<const IgnoredControl> HoldingLaw::ignored_controls() const { return kIgnored; }
 
-void HoldingLaw::start_attempt(std::span<const Contact> contacts, const ContactLinearisation& lin, double dt) {
-  PenaltyContacts::start_attempt(contacts, lin, dt);
+void HoldingLaw::start_attempt(std::span<Contact> contacts, const ContactLinearisation& lin, double dt,
+                               const VecX* predicted) {
+  PenaltyContacts::start_attempt(contacts, lin, dt, predicted);
   friction_passes_ = 0;
   gross_passes_ = 0;
 }

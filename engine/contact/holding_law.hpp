@@ -40,7 +40,8 @@ class HoldingLaw final : public PenaltyContacts {
   ContactLaw law() const override { return ContactLaw::Holding; }
   std::span<const IgnoredControl> ignored_controls() const override;
   double warm_start_dt(double last_dt, double dt) const override { return last_dt > 0 ? last_dt : dt; }
-  void start_attempt(std::span<const Contact> contacts, const ContactLinearisation& lin, double dt) override;
+  void start_attempt(std::span<Contact> contacts, const ContactLinearisation& lin, double dt,
+                     const VecX* predicted) override;
 
  private:
   void measure_step(const VecX& d) override;

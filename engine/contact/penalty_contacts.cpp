@@ -2,6 +2,7 @@
 // SPDX-FileCopyrightText: 2026 The dda maintainers
 #include "contact/penalty_contacts.hpp"
 
+#include <algorithm>
 #include <atomic>
 #include <cmath>
 
@@ -11,6 +12,24 @@
 #include "core/parallel.hpp"
 
 namespace dda {
+
+namespace {
+// parallel_max's pattern for a result of one's own: fold(i, acc) folds item
+// i into acc, join(a, b) joins two partial results; neither may depend on
+// the order (maxima, flags), so that the result is the same on any thread
+// count.
+template <typename T, typename Fold, typename Join>
+T parallel_fold(std::size_t n, T init, Fold&& fold, Join&& join) {
+  return tbb::parallel_reduce(
+      tbb::blocked_range<std::size_t>(0, chunk_count(n), 1), init,
+      [&](const tbb::blocked_range<std::size_t>& chunks, T acc) {
+        const std::size_t end = std::min(n, chunks.end() * kChunk);
+        for (std::size_t i = chunks.begin() * kChunk; i < end; ++i) fold(i, acc);
+        return acc;
+      },
+      join);
+}
+}  // namespace
 
 PenaltyContacts::PenaltyContacts() : landing_(std::make_unique<LandingLaw>()) {}
 PenaltyContacts::~PenaltyContacts() = default;
@@ -37,41 +56,42 @@ void PenaltyContacts::check(const ContactParameters& p, const Blocks& blocks) co
   validate_landing_law(p.restitution, p.integrator, blocks);
 }
 
+// The states are copied by the attempt's first pass over the contacts
+// (start_attempt): nothing changes them before it. The friction lag's memory
+// is not saved: only a commit (an accepted step) and a search (which saves
+// again after it) change it.
 void PenaltyContacts::save_step(std::span<const Contact> contacts) {
   saved_.resize(contacts.size());
-  saved_memory_.resize(contacts.size());
-  parallel_for_each(
-      contacts.size(),
-      [&](std::size_t i) {
-        saved_[i] = iteration_state(contacts[i]);
-        saved_memory_[i] = memory_[i];
-      },
-      1024);
+  save_pending_ = true;
 }
 
 void PenaltyContacts::restore_step(std::span<Contact> contacts) {
   parallel_for_each(
-      contacts.size(),
-      [&](std::size_t i) {
-        set_iteration_state(contacts[i], saved_[i]);
-        memory_[i] = saved_memory_[i];
-      },
-      1024);
+      contacts.size(), [&](std::size_t i) { set_iteration_state(contacts[i], saved_[i]); }, 1024);
 }
 
 // An attempt's starting point: each contact's shear offset, the normal force
 // of the last accepted solve (the friction of the first solve) and, with
 // friction_lag, its lagged friction normal force and the weight of the new N
-// in it over this attempt's dt.
-void PenaltyContacts::start_attempt(std::span<const Contact> contacts, const ContactLinearisation& lin, double dt) {
+// in it over this attempt's dt; then the first guess from the warm start
+// (predict, below). One pass over the contacts, which also keeps the step's
+// start for a redo after save_step.
+void PenaltyContacts::start_attempt(std::span<Contact> contacts, const ContactLinearisation& lin, double dt,
+                                    const VecX* predicted) {
   iterate_.resize(contacts.size());
   dt_ = dt;
+  if (predicted) measure_step(*predicted);
+  const bool save = save_pending_;
+  save_pending_ = false;
   parallel_for_each(
       contacts.size(),
       [&](std::size_t i) {
-        const Contact& c = contacts[i];
-        iterate_[i] = {lin.offsets[i].s0, c.normal_force, lin.offsets[i].s0, c.state != ContactState::Open,
-                       lagged_friction(memory_[i], c.state, dt, p_.friction_lag)};
+        Contact& c = contacts[i];
+        if (save) saved_[i] = iteration_state(c);
+        ContactIterate& it = iterate_[i];
+        it = {lin.offsets[i].s0, c.normal_force, lin.offsets[i].s0, c.state != ContactState::Open,
+              lagged_friction(memory_[i], c.state, dt, p_.friction_lag)};
+        if (predicted) predict(c, it, lin.gradients[i], lin.offsets[i], *predicted);
       },
       1024);
 }
@@ -172,24 +192,18 @@ bool PenaltyContacts::decide(Contact& c, ContactIterate& it, const JointMaterial
 // warm start, a block landing on a slope (scripts/incline.lua) got an N of a
 // penetration it never reached, and its open-close iteration did not settle
 // in five steps.
-void PenaltyContacts::predict(std::span<Contact> contacts, const ContactLinearisation& lin, const VecX& d) {
-  measure_step(d);
-  parallel_for_each(
-      contacts.size(),
-      [&](std::size_t i) {
-        Contact& c = contacts[i];
-        if (c.intact) return;
-        const ContactIterationState before = iteration_state(c);
-        const ContactIterate iterate = iterate_[i];
-        const ContactMotion m = motion(lin.gradients[i], lin.offsets[i], d, c, iterate);
-        decide(c, iterate_[i], p_.joints[c.joint], p_.tan_friction[c.joint], contact_springs(c, p_), m);
-        if (before.state != ContactState::Open && c.state == ContactState::Open) {
-          set_iteration_state(c, before);
-          iterate_[i] = iterate;
-        }
-        iterate_[i].normal_force = iterate.normal_force;
-      },
-      1024);
+void PenaltyContacts::predict(Contact& c, ContactIterate& it, const ContactGradients& k, const ContactOffsets& o,
+                              const VecX& d) const {
+  if (c.intact) return;
+  const ContactIterationState before = iteration_state(c);
+  const ContactIterate iterate = it;
+  const ContactMotion m = motion(k, o, d, c, iterate);
+  decide(c, it, p_.joints[c.joint], p_.tan_friction[c.joint], contact_springs(c, p_), m);
+  if (before.state != ContactState::Open && c.state == ContactState::Open) {
+    set_iteration_state(c, before);
+    it = iterate;
+  }
+  it.normal_force = iterate.normal_force;
 }
 
 // The springs each contact acts with in this solve (normal on a closed
@@ -224,7 +238,11 @@ NextSolve PenaltyContacts::check_solve(std::span<Contact> contacts, const Contac
   measure_step(d);
   std::atomic<bool> any_friction{false};  // a sliding contact's N moved
   std::atomic<bool> any_gross{false};     // ... grossly
-  const int any_changed = parallel_max<int>(nc, 0, [&](std::size_t i) {
+  struct Found {
+    int changed = 0;     // 2: a state changed, 1: friction alone moved
+    double deepest = 0;  // the deepest penetration of a closed contact
+  };
+  const auto check = [&](std::size_t i) {
     Contact& c = contacts[i];
     ContactIterate& it = iterate_[i];
     const ContactSprings springs = contact_springs(c, p_);
@@ -252,10 +270,20 @@ NextSolve PenaltyContacts::check_solve(std::span<Contact> contacts, const Contac
                         : 0.0;
     if (friction_moved) any_friction.store(true, std::memory_order_relaxed);
     return changed ? 2 : friction_moved ? 1 : 0;
-  });
+  };
+  const Found found = parallel_fold(
+      nc, Found{},
+      [&](std::size_t i, Found& f) {
+        f.changed = std::max(f.changed, check(i));
+        if (contacts[i].state != ContactState::Open) f.deepest = std::max(f.deepest, contacts[i].penetration);
+      },
+      [](const Found& a, const Found& b) {
+        return Found{std::max(a.changed, b.changed), std::max(a.deepest, b.deepest)};
+      });
+  deepest_penetration_ = found.deepest;
   // States that changed always call for another solve; friction alone as
   // the law says.
-  const bool states_changed = any_changed == 2;
+  const bool states_changed = found.changed == 2;
   const NextSolve for_friction =
       any_friction.load(std::memory_order_relaxed)
           ? solve_again_for_friction(any_gross.load(std::memory_order_relaxed), states_changed)

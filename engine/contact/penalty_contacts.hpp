@@ -70,8 +70,8 @@ class PenaltyContacts : public ContactModel {
   void check(const ContactParameters& p, const Blocks& blocks) const override;
   void save_step(std::span<const Contact> contacts) override;
   void restore_step(std::span<Contact> contacts) override;
-  void start_attempt(std::span<const Contact> contacts, const ContactLinearisation& lin, double dt) override;
-  void predict(std::span<Contact> contacts, const ContactLinearisation& lin, const VecX& d) override;
+  void start_attempt(std::span<Contact> contacts, const ContactLinearisation& lin, double dt,
+                     const VecX* predicted) override;
   void contribute(std::span<const Contact> contacts, const ContactLinearisation& lin) override;
   NextSolve check_solve(std::span<Contact> contacts, const ContactLinearisation& lin, const VecX& d) override;
   ContactEnergy energy(std::span<const Contact> contacts, const ContactLinearisation& lin,
@@ -125,6 +125,8 @@ class PenaltyContacts : public ContactModel {
   std::vector<ContactIterate> iterate_;
 
  private:
+  // A contact's first guess from the warm start d (start_attempt).
+  void predict(Contact& c, ContactIterate& it, const ContactGradients& k, const ContactOffsets& o, const VecX& d) const;
   // The decision both laws share: the contact's next state from its motion
   // under the latest displacements (Mohr-Coulomb on the springs' forces,
   // with the law's bands and re-locking). Returns true when the state (or
@@ -138,9 +140,10 @@ class PenaltyContacts : public ContactModel {
   // The per-contact history: the friction lag's memory (friction_lag.hpp).
   std::vector<FrictionMemory> memory_;
   std::vector<FrictionMemory> scratch_memory_;  // follow_search's
-  // At the start of the step, for a redo.
+  // At the start of the step, for a redo: taken by the attempt's first pass
+  // over the contacts (save_pending_), which finds them as save_step did.
   std::vector<ContactIterationState> saved_;
-  std::vector<FrictionMemory> saved_memory_;
+  bool save_pending_ = false;
   double dt_ = 0;  // the attempt's step (s)
   // Whether a contact may hold a lagged friction force (the last commit left
   // one, or the contacts came from elsewhere: a checkpoint, another law).

@@ -28,10 +28,19 @@ class TransferWatch {
   // Adds each block's largest vertex displacement since the last call to its
   // bound; blocks whose outlines changed (vertex counts) start the watch over.
   void follow(const BlockPolygons& blocks);
+  // follow in two parts, for a caller's own pass over the blocks: whether
+  // the outlines changed (then the watch starts over, and there is nothing
+  // to follow), else follow_block for every block.
+  bool start_over_if_reshaped(const BlockPolygons& blocks);
+  void follow_block(const BlockPolygons& blocks, std::size_t b);
   // Whether a contact's vertex has left its edge (passed_corner or
   // slid_past_end), `contacts` being the list that the watch has followed
   // since the last forget().
   bool left_an_edge(const BlockPolygons& blocks, std::span<const Contact> contacts);
+  // left_an_edge one contact at a time, for a caller's own pass over the
+  // list: watch_contacts before the pass, then left_its_edge for each.
+  void watch_contacts(std::span<const Contact> contacts);
+  bool left_its_edge(const BlockPolygons& blocks, const Contact& c, std::size_t i);
   // Whether aligned edges slid past each other's corner (aligned_edges_slid),
   // `aligned` being the list followed since the last forget().
   bool aligned_slid(const BlockPolygons& blocks, std::span<const AlignedEdges> aligned);
@@ -50,6 +59,10 @@ class TransferWatch {
     int a, b;
     double until;
   };
+  template <class Item, class Test>
+  void size_slacks(std::span<const Item> items, std::vector<Slack>& slacks, Test test) const;
+  template <class Item, class Test, class SlackOf>
+  bool check_one(const BlockPolygons& blocks, const Item& item, Slack& s, Test test, SlackOf slack_of) const;
   template <class Item, class Test, class SlackOf>
   bool check(const BlockPolygons& blocks, std::span<const Item> items, std::vector<Slack>& slacks, Test test,
              SlackOf slack_of);

@@ -288,7 +288,6 @@ void Stepper::assemble_own_terms(WorldState& w) {
 // The warm start and the open-close iteration's first guess (solve_regime.hpp).
 void Stepper::predict(WorldState& w) {
   StageTimer timer(stats_.profile, Stage::PredictStates);
-  contact_model_->start_attempt(w.contacts, linearisation_, w.dt);
   const Blocks& blocks = w.blocks;
   // The Δt of the step the warm start extrapolates from: the last accepted
   // one's (after a cut or a growth of Δt it differs), as the contact law says
@@ -304,7 +303,7 @@ void Stepper::predict(WorldState& w) {
                 : blocks.last_displacement[b];
       },
       256);
-  if (regime_.predict_states) contact_model_->predict(w.contacts, linearisation_, solution_);
+  contact_model_->start_attempt(w.contacts, linearisation_, w.dt, regime_.predict_states ? &solution_ : nullptr);
 }
 
 // loop { Assemble → Solve → CheckContacts } until the contact law asks for
@@ -406,7 +405,7 @@ Rejection Stepper::check_motion(const WorldState& w) {
   const double range = detection_.range(c.contact_range, 2.5 * c.g2 * w.half_height);
   if (motion_.largest_displacement > range / 2.5) return Rejection::BeyondContactRange;
   if (motion_.inverted_block >= 0) return Rejection::BlockInverted;
-  if (deepest_penetration(w.contacts) > bound) return Rejection::PenetrationTooDeep;
+  if (contact_model_->deepest_penetration() > bound) return Rejection::PenetrationTooDeep;
   return Rejection::None;
 }
 
