@@ -52,15 +52,21 @@ double model_extent(const Blocks& blocks) {
   return blocks.count() > 0 ? (hi - lo).maxCoeff() : 0.0;
 }
 
-// Per block, the mesh size that resolves `frequency` (0: none), budget aside.
-// The automatic blocks are meshed where a block is larger than that size, and
-// also, each into the few elements of its outline, where the model spans a
-// shear wavelength or more: a wave then travels through a chain of blocks,
-// and a first-order block sends a wrong-sign lobe ahead of it whatever the
-// block's size (its strain modes' inertia; at stiff joints the lobe's height
-// does not shrink with the block, docs/block_mass.md), where lumped-mass
-// elements send none. A model shorter than the wavelength moves as a body (a
-// block sliding on its base under an earthquake): its blocks stay as they are.
+// Whether first-order blocks carry a wave wrongly at element size `size`:
+// where a block is larger than the size, and where the model spans a shear
+// wavelength or more, whatever the blocks' size: a wave then travels through
+// a chain of blocks, and a first-order block sends a wrong-sign lobe ahead of
+// it (its strain modes' inertia; at stiff joints the lobe's height does not
+// shrink with the block, docs/block_mass.md), where lumped-mass elements send
+// none. A model shorter than the wavelength moves as a body (a block sliding
+// on its base under an earthquake).
+bool first_order_misleads(double block_edge, double size, double extent) {
+  return block_edge > size * (1 + 1e-9) || extent >= kElementsPerWavelength * size;
+}
+
+// Per block, the mesh size that resolves `frequency` (0: none), budget aside:
+// every automatic block where first-order blocks would mislead (a block
+// within the size into the few elements of its outline).
 std::vector<double> resolving_meshes(const WorldState& w, double frequency) {
   const std::size_t n = w.blocks.count();
   std::vector<double> size(n, 0.0);
@@ -71,8 +77,7 @@ std::vector<double> resolving_meshes(const WorldState& w, double frequency) {
     const BlockId id = static_cast<BlockId>(b);
     if (!automatic(w, id)) continue;
     size[b] = wave_element_size(w.rocks[w.blocks.material[b]], frequency);
-    const double wavelength = kElementsPerWavelength * size[b];
-    needed = needed || longest_edge(w.blocks, id) > size[b] * (1 + 1e-9) || extent >= wavelength;
+    needed = needed || first_order_misleads(longest_edge(w.blocks, id), size[b], extent);
   }
   if (!needed) size.assign(n, 0.0);
   return size;
@@ -126,6 +131,7 @@ WaveModel choose_wave_model(const WorldState& w, const LoadFrequency& load) {
     const double h = wave_element_size(w.rocks[w.blocks.material[b]], f);
     h_min = h_min > 0 ? std::min(h_min, h) : h;
   }
+  const double extent = model_extent(w.blocks);
   const std::string head =
       msg("dynamic loads up to ", figure(f), " Hz (", load.source, ", ", kEnergyShare * 100, " % of its energy below)");
   if (m.meshed_blocks > 0)
@@ -141,7 +147,7 @@ WaveModel choose_wave_model(const WorldState& w, const LoadFrequency& load) {
     m.notes.push_back(msg(head, ": first-order blocks kept, as mesh_size says"));
   else
     m.notes.push_back(msg(head, ": every block (the largest edge ", figure(largest_block), " m) is within the ",
-                          figure(h_min), " m that resolves it and the model (", figure(model_extent(w.blocks)),
+                          figure(h_min), " m that resolves it and the model (", figure(extent),
                           " m across) within a shear wavelength; first-order blocks kept"));
   if (m.active && c.mesh_mass == MeshMass::Auto && c.integrator == Integrator::Auto)
     m.notes.push_back(
@@ -163,10 +169,10 @@ WaveModel choose_wave_model(const WorldState& w, const LoadFrequency& load) {
   }
 
   // Choices by hand that carry a precursor or under-resolve the load.
-  if (c.mesh_size == 0)
+  if (c.mesh_size == 0 && first_order_misleads(largest_block, h_min, extent))
     m.warnings.push_back(msg("mesh_size = 0 keeps first-order blocks (the largest edge ", figure(largest_block),
                              " m) under a dynamic load of ", figure(f), " Hz, which needs elements of ", figure(h_min),
-                             " m: first-order blocks of any size send a wrong-sign lobe of 2-16 % (Shi's scheme) "
+                             " m: first-order blocks send a wrong-sign lobe of 2-16 % (Shi's scheme) "
                              "to 4-23 % (newmark) of the amplitude ahead of each pulse (docs/waves.md, \"The "
                              "precursor\"); leave mesh_size out to mesh them"));
   for (std::size_t r = 0; r < w.rocks.size(); ++r) {
