@@ -40,6 +40,11 @@ void CholmodSolver::set_operator(const LinearOperator& a) {
   cg_.set_operator(a);
 }
 
+bool CholmodSolver::factorise(const LinearOperator& a) {
+  set_operator(a);
+  return refactorise();
+}
+
 bool CholmodSolver::refactorise() {
   const BlockSparseMatrix* stored = a_->stored_matrix();
   if (!stored) throw Error("the CHOLMOD solver needs the operator's entries, and this operator is matrix-free only");

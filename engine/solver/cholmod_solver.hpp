@@ -55,6 +55,10 @@ class CholmodSolver final : public LinearSolver {
   void save_state(ArchiveWriter& ar) const override;
   void load_state(ArchiveReader& ar) override;
   const CholmodFactor& factor() const { return factor_; }
+  // Factorises the operator's system now, to be kept for the solves to come
+  // (the automatic choice's trial starts from the last step's system, as a
+  // step with the factor does). False when it is not positive definite.
+  bool factorise(const LinearOperator& a);
 
   // CG iterations a solve may take with the factor it has before the system
   // is factorised anew (CholmodSettings::refactor_iterations).

@@ -76,6 +76,12 @@ class LinearSolver {
   // Once per step, before its solves: the settings (each backend reads its
   // own part) and what the step knows of its solves. The default ignores both.
   virtual void begin_step(const SolverSettings& /*settings*/, const StepSolveInfo& /*info*/) {}
+  // Once per step, after its last solve (before a checkpoint can be taken):
+  // a solver that decides from the step's counts decides here, and may
+  // prepare for the next step with the step's last system (AutoSolver
+  // factorises it for a trial of the factor). Returns the numeric
+  // factorisations it made, for the step's stats. The default does nothing.
+  virtual int end_step() { return 0; }
   virtual void set_operator(const LinearOperator& a) = 0;
   // Solves A·x = b; x holds the initial guess on entry.
   virtual SolveReport solve(const VecX& b, VecX& x) = 0;

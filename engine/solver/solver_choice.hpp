@@ -15,31 +15,48 @@
 //     (kSolveFlopWeight, kFactorFlopWeight, kFactorProducts; fitted on
 //     walls 20 to 100, see below and docs/direct_solver.md).
 //
-//   1. Steps start with PCG. After kLongStepsBeforeTrial steps in a row whose
-//      solves took over kToDirect CG iterations each (stiff systems: walls,
-//      slopes, long dynamic steps; wave problems take 6–17), the next step
-//      tries the factor. (Not after one: the first step solves tightly in
-//      every open-close iteration, solve_regime.hpp, and its PCG work is not
-//      that of the steps after it, which the factor is judged against.)
-//   2. The trial lasts kTrialSteps steps, over which the factor's work per
-//      step is summed against the last PCG step's. It gives up, and the step
-//      finishes on PCG, as soon as a new factorisation would take that sum
-//      past kTrialBudget of a PCG step: where the contacts' states change in
-//      every step (a settling wall under the holding law) the factor must be
-//      made again each step, and a trial that ran its steps cost two
-//      factorisations a step at twice PCG's work. A trial that ends with the
-//      factor no dearer than PCG keeps it.
-//   3. After the trial, each step's work with the factor goes into an
-//      exponential average (from the trial's mean), compared with the last
-//      PCG step's; where PCG was cheaper, steps go back to PCG. A trial that
-//      gave up or lost is tried again only after kRetrySteps steps (doubled
-//      after each). The trial's first factorisation is counted as spread
+//   1. Steps start with PCG. After a PCG step whose solves took over
+//      kToDirect CG iterations each (stiff systems: walls, slopes, long
+//      dynamic steps; wave problems take 6–17), the next step tries the
+//      factor: one trial step, with the factor of the PCG step's last
+//      system, made as that step ends (end_step), so that the trial meets
+//      what every step with a kept factor meets: the system moved on by a
+//      step (under the holding law a settling wall's contacts change, and
+//      the factor must be made again; under Shi's law on wall(100) the kept
+//      factor serves for steps). That first factorisation is counted as spread
 //      over kRetrySteps steps: it serves every step the factor is then kept,
 //      and on large systems it would otherwise outweigh the trial
-//      (wall(200)).
-//   4. The step back to PCG reports the last PCG step's counts
-//      (choose_backend), so it is solved in the long-solve regime of the PCG
-//      steps, not in the short one the factor's few iterations would choose.
+//      (wall(200)). Within the trial a new factorisation is made only while
+//      the step's work stays within (1 + kTrialBudget) PCG steps; past it
+//      the trial gives up and the step finishes on PCG (dynamic walls, whose
+//      contacts change in every open-close iteration).
+//   2. The trial step is judged against the last PCG step that measured
+//      PCG's work. The run's first step does not (it solves tightly in every
+//      open-close iteration, solve_regime.hpp: two to three times the work
+//      of the steps after it), so a trial right after it is followed by one
+//      PCG step that measures, and judged then. Whichever is cheaper takes
+//      the steps after. The trial comes second so that the steps a run is
+//      judged by (and the bench's timed ones, from the third) start on the
+//      cheaper solver: on a settling wall under the holding law the trial
+//      shows a factorisation in every step (PCG wins), under Shi's law on
+//      wall(100) almost none (the factor wins).
+//   3. On the factor, each step's work goes into an average, compared with
+//      the last PCG step's; where PCG was cheaper, steps go back to PCG. The
+//      average is the plain mean of the first kMeanSteps steps (the trial's
+//      included: a dynamic wall's second step, the trial, made one
+//      factorisation where the steps after it made two), then exponential
+//      (a settled wall's kept factor is made again every few steps, and one
+//      such step must not send it back). A trial that gave up or lost, and a
+//      factor that lost, is tried again only after kRetrySteps PCG steps
+//      (doubled each time).
+//   4. Each backend's step is solved in the regime of that backend's last
+//      step (choose_backend reports its counts): the step back to PCG in the
+//      long-solve regime of the PCG steps, not in the short one the factor's
+//      few iterations would choose; the trial in the short one of a run on
+//      the factor (as after no step: a step with the factor predicts the
+//      contacts' states, and under the holding law that prediction is what
+//      makes the kept factor stale; judged in the long regime, the trial
+//      showed no factorisation where the steps after it made one each).
 //
 // Counts, not seconds: seconds depend on the machine's load, and the choice
 // changes the answer within the solver tolerance, so a choice from timings
@@ -57,6 +74,7 @@ class AutoSolver final : public LinearSolver {
   AutoSolver();
   StepSolveInfo choose_backend(const SolverSettings& settings, const StepSolveInfo& info) override;
   void begin_step(const SolverSettings& settings, const StepSolveInfo& info) override;
+  int end_step() override;
   void set_operator(const LinearOperator& a) override;
   SolveReport solve(const VecX& b, VecX& x) override { return solve_from(b, x, {}); }
   SolveReport resolve(const VecX& b, VecX& x, std::span<const char> changed_rows) override {
@@ -70,10 +88,9 @@ class AutoSolver final : public LinearSolver {
 
   static constexpr double kToDirect = 30;      // PCG iterations per solve
   static constexpr int kDirectMinBlocks = 64;  // smaller systems stay with PCG
-  static constexpr int kLongStepsBeforeTrial = 2;
-  static constexpr int kTrialSteps = 3;        // before the factor's work is judged
   static constexpr double kTrialBudget = 0.5;  // of a PCG step: what a trial may cost beyond PCG
   static constexpr int kRetrySteps = 50;       // PCG steps before the factor is tried again
+  static constexpr int kMeanSteps = 3;         // steps on the factor averaged alike (rule 3)
   // The model's constants, fitted to the CPU time per step of wall(20),
   // wall(40) and wall(100) with each solver on one thread (12 steps each,
   // quasi-static and dynamic, both contact laws; docs/direct_solver.md): a PCG
@@ -102,38 +119,48 @@ class AutoSolver final : public LinearSolver {
  private:
   LinearSolver& current() { return on_direct_ ? static_cast<LinearSolver&>(*direct_) : pcg_; }
   SolveReport solve_from(const VecX& b, VecX& x, std::span<const char> changed_rows);
-  void choose(const StepSolveInfo& info);
+  void choose();
   // The factor's work in products over `iterations` CG iterations and
-  // `factorisations` (this step's counts by default); in a trial's first
-  // step its first factorisation counts as spread over kRetrySteps steps.
+  // `factorisations` (this step's counts by default); in a trial step its
+  // first factorisation counts as spread over kRetrySteps steps.
   double direct_step_work(long iterations, int factorisations) const;
   double direct_step_work() const { return direct_step_work(iterations_, factorisations_); }
-  void give_up_trial();  // rule 2: the rest of the step, and the steps after, on PCG
+  void close_direct_step();
+  void close_pcg_step();
+  int start_trial();
+  void give_up_trial();  // rule 1: the rest of the step, and the steps after, on PCG
+  void wait_before_retrying();
 
   PcgSolver pcg_;
   std::unique_ptr<CholmodSolver> direct_;  // made on first use
   bool on_direct_ = false;
   // This step: its settings and what it knows of its solves (for a switch
-  // to PCG within it), its operator, whether it is a trial's first step,
-  // and whether that trial gave up in it (its counts then mix the two).
+  // to PCG within it), its operator, whether it is a trial step, and
+  // whether that trial gave up in it (its counts then mix the two); whether
+  // the step before it was solved with PCG alone.
   SolverSettings settings_;
   StepSolveInfo info_;
   const LinearOperator* a_ = nullptr;
-  bool trial_step_ = false, gave_up_ = false;
+  bool trial_step_ = false, gave_up_ = false, last_on_pcg_ = true;
   // This step's counts.
   int solves_ = 0, factorisations_ = 0;
   long iterations_ = 0;
   // The last PCG step: its work, and its counts for the solve regime and
-  // the PCG's own preconditioner choice (StepSolveInfo).
+  // the PCG's own preconditioner choice (StepSolveInfo); how many PCG steps
+  // the run made (the first does not measure, rule 2), and whether this one
+  // measures for a trial just made.
   double pcg_work_ = 0;
   int pcg_solves_ = 0;
   long pcg_iterations_ = 0;
-  // Steps with the factor since the switch, and their average work; in the
-  // trial, the sum of its steps' work less PCG's.
+  int pcg_steps_ = 0;
+  bool measuring_ = false;
+  // Steps with the factor since the switch (the trial's included), their
+  // average work, and the last one's counts (for the solve regime).
   int direct_steps_ = 0;
-  double direct_work_ = 0, trial_excess_ = 0;
+  double direct_work_ = 0;
+  int direct_solves_ = 0;
+  long direct_iterations_ = 0;
   int retry_in_ = 0, retry_wait_ = kRetrySteps;
-  int long_pcg_steps_ = 0;  // PCG steps in a row over kToDirect iterations per solve
 };
 
 }  // namespace dda

@@ -42,8 +42,9 @@ namespace dda {
 // 9: the automatic solver choice's trial (its work against PCG's, and a
 // trial given up in the step). 10: the wave model (its decision, the
 // in-place meshing's map, the joints' lengths, the boundaries' edges and
-// the edge targets).
-inline constexpr std::uint32_t kCheckpointFormat = 10;
+// the edge targets). 11: the automatic solver choice judges one trial step
+// (the PCG steps made, and whether one measures for the trial).
+inline constexpr std::uint32_t kCheckpointFormat = 11;
 
 // The World's state and `extra` (bytes its owner keeps beside it: the Lua
 // layer's loads and monitors), as a checkpoint file's bytes.

@@ -24,6 +24,7 @@
 //   │  └─ ControlStep        block/motion: g2 bound, contact range, inverted
 //   │                        blocks, penetration → accept, or cut Δt (or widen
 //   │                        the contact range) and redo (step_control.hpp)
+//   ├─ the linear solver's end of step (its choice for the next step)
 //   └─ Update                the energy budget (world/energy.cpp); the contact
 //                            law's impacts (the landing law, opt-in);
 //                            block/motion, loading/, boundary/; what the
@@ -78,6 +79,7 @@ StepStats Stepper::step(WorldState& w) {
       if (r == Rejection::None) break;
       control_step(w, r);
     }
+    stats_.factorisations += solver_->end_step();
     update(w);
   });
   finish_step(w);

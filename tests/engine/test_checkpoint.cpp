@@ -215,6 +215,15 @@ TEST(Checkpoint, WallOnTheKeptFactorContinuesBitForBit) {
   expect_restart_exact(wall, 6, 6);
 }
 
+TEST(Checkpoint, WallThroughTheAutomaticChoicesTrialContinuesBitForBit) {
+  // The automatic choice makes the trial's factor as step 1 ends, tries it
+  // in step 2 and measures PCG in step 3 (solver_choice.hpp): a checkpoint
+  // after step 1 holds that factor, one after step 2 the trial's work.
+  const auto wall = [] { return test::brick_wall(10); };
+  expect_restart_exact(wall, 1, 4);
+  expect_restart_exact(wall, 2, 3);
+}
+
 TEST(Checkpoint, FileRoundTripAndAtomicWrite) {
   const auto dir = std::filesystem::temp_directory_path() / "dda_checkpoint_test";
   std::filesystem::create_directories(dir);
