@@ -88,8 +88,8 @@ add_test(NAME script.ntdda_wall
 set_tests_properties(script.ntdda_wall PROPERTIES LABELS scripts TIMEOUT 60)
 
 # The automatic solver choice keeps the factor on wall(200) (80,201 blocks)
-# after its 4-step trial: there a step with the kept factor costs a fifth of a
-# PCG step, and the trial's first factorisation (counted as spread over 50
+# after its trial: there a step with the kept factor costs a fifth of a PCG
+# step, and the trial's first factorisation (counted as spread over 50
 # steps, solver_choice.hpp) must not send it back to PCG. The last of 8 steps
 # must have run with the factor.
 add_test(NAME script.auto_keeps_the_factor_on_wall200
@@ -97,6 +97,14 @@ add_test(NAME script.auto_keeps_the_factor_on_wall200
                  $<TARGET_FILE:dda> ${DDA_SCRIPT_TEST_OUT}
          WORKING_DIRECTORY ${PROJECT_SOURCE_DIR})
 set_tests_properties(script.auto_keeps_the_factor_on_wall200 PROPERTIES LABELS long TIMEOUT 1800 RUN_SERIAL TRUE)
+# The automatic solver choice never leaves PCG on blast(2), a wave problem
+# (a few CG iterations a solve, solver_choice.hpp): no factorisation in its
+# first 30 steps, not even a trial's, and the last step on PCG.
+add_test(NAME script.auto_keeps_pcg_on_blast
+         COMMAND bash -c "$1 run scripts/bench/bench.lua --quiet --set scene=blast --set h=2 --set warmup=0 --set steps=30 --set threads=1 | grep -q ' pcg (0.00 factorisations/step)$'" _
+                 $<TARGET_FILE:dda>
+         WORKING_DIRECTORY ${PROJECT_SOURCE_DIR})
+set_tests_properties(script.auto_keeps_pcg_on_blast PROPERTIES LABELS scripts TIMEOUT 120)
 
 # The paper's Section 4 blast (scripts/paper/blast.lua). A 3 ms run of the 100 m
 # DHI model checks the first arrival at MP1 against the P-wave travel time and

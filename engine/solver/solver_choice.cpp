@@ -94,6 +94,9 @@ int AutoSolver::end_step() {
   solves_ = factorisations_ = 0;
   iterations_ = 0;
   gave_up_ = false;
+  // PCG takes over until the next trial, which makes its own factor: the
+  // factor's memory is given back.
+  if (!on_direct_ && !measuring_) direct_.reset();
   return on_direct_ && !was_on_direct && direct_steps_ == 0 ? start_trial() : 0;
 }
 
