@@ -53,7 +53,7 @@ struct StepStats {
   int cg_iterations = 0;          // over all rows
   int patch_iterations = 0;       // confined to the patch of a re-solve (PcgSettings::patch_hops)
   const char* solver = "";        // the backend that solved ("pcg", "cholmod": SolverSettings::kind)
-  int factorisations = 0;         // numeric factorisations of the system (cholmod)
+  int factorisations = 0;         // numeric factorisations of the system (cholmod; LinearSolver::end_step's included)
   int factor_iterations = 0;      // of cg_iterations, those preconditioned with the factor (cholmod)
   const char* solve_regime = "";  // "short" or "long" solves (world/solve_regime.hpp)
   int step_cuts = 0;
