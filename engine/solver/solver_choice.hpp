@@ -28,8 +28,7 @@
 //      and on large systems it would otherwise outweigh the trial
 //      (wall(200)). Within the trial a new factorisation is made only while
 //      the step's work stays within (1 + kTrialBudget) PCG steps; past it
-//      the trial gives up and the step finishes on PCG (dynamic walls, whose
-//      contacts change in every open-close iteration).
+//      the trial gives up and the step finishes on PCG.
 //   2. The trial step is judged against the last PCG step that measured
 //      PCG's work. The run's first step does not (it solves tightly in every
 //      open-close iteration, solve_regime.hpp: two to three times the work
@@ -46,9 +45,9 @@
 //      included: a dynamic wall's second step, the trial, made one
 //      factorisation where the steps after it made two), then exponential
 //      (a settled wall's kept factor is made again every few steps, and one
-//      such step must not send it back). A trial that gave up or lost, and a
-//      factor that lost, is tried again only after kRetrySteps PCG steps
-//      (doubled each time).
+//      such step must not send it back). When PCG takes over (a trial that
+//      gave up or lost, a factor that lost), the factor is freed, and the
+//      next trial comes after kRetrySteps PCG steps (doubled each time).
 //   4. Each backend's step is solved in the regime of that backend's last
 //      step (choose_backend reports its counts): the step back to PCG in the
 //      long-solve regime of the PCG steps, not in the short one the factor's
