@@ -296,7 +296,11 @@ std::vector<std::pair<std::string, std::string>> api_reference_pages(lua_State* 
           names_table("field", field_names(), false),
           "\n## Controls\n\n"
           "The options of `dda.model{...}` and `m:controls{...}`: every control with its default. They may change "
-          "between steps.\n\n",
+          "between steps. A control set away from its default where the model in use does not read it "
+          "(`rho_inf` without `integrator = \"generalized_alpha\"`, `contact_tolerance` under `\"holding\"`, "
+          "`refactor_iterations` and `fill_ordering` under `solver = \"pcg\"`, a lumped or mixed `mesh_mass` or "
+          "`mesh_preconditioner` without meshed blocks) stops the next step with why and the cure, rather than "
+          "being ignored (`engine/world/inert_controls.hpp`).\n\n",
           controls_markdown_table());
   ApiSection model;
   for (const ApiSection& s : sections)

@@ -143,8 +143,8 @@ struct ImpactInputs {
   Vec2 gravity;
 };
 
-// A control a law does not read, and why (docs/contacts.md; a test holds
-// each one inert).
+// A control a law does not read, and why: set away from its default under
+// that law, it is refused (world/inert_controls.hpp; docs/contacts.md).
 struct IgnoredControl {
   const char* control;
   const char* why;

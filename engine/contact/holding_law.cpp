@@ -75,7 +75,7 @@ std::span<const IgnoredControl> HoldingLaw::ignored_controls() const { return kI
 
 void HoldingLaw::start_attempt(std::span<Contact> contacts, const ContactLinearisation& lin, double dt,
                                const VecX* predicted) {
-  PenaltyContacts::start_attempt(contacts, lin, dt, predicted);
+  start_attempt_as(*this, contacts, lin, dt, predicted);
   friction_passes_ = 0;
   gross_passes_ = 0;
 }

@@ -42,17 +42,21 @@ class HoldingLaw final : public PenaltyContacts {
   double warm_start_dt(double last_dt, double dt) const override { return last_dt > 0 ? last_dt : dt; }
   void start_attempt(std::span<Contact> contacts, const ContactLinearisation& lin, double dt,
                      const VecX* predicted) override;
+  NextSolve check_solve(std::span<Contact> contacts, const ContactLinearisation& lin, const VecX& d) override {
+    return check_solve_as(*this, contacts, lin, d);
+  }
 
  private:
-  void measure_step(const VecX& d) override;
-  void set_bands(ContactMotion& m, const ContactOffsets& o, bool closed_at_start) const override;
-  bool unbonded(const JointMaterial& joint) const override;
-  bool locks_unloaded() const override { return false; }
+  friend class PenaltyContacts;  // asks the decisions' questions below
+  void measure_step(const VecX& d);
+  void set_bands(ContactMotion& m, const ContactOffsets& o, bool closed_at_start) const;
+  bool unbonded(const JointMaterial& joint) const;
+  bool locks_unloaded() const { return false; }
   bool locks_again(const Contact& c, const ContactIterate& it, double normal, double tan_phi, const ContactSprings& k,
-                   const ContactMotion& m) const override;
+                   const ContactMotion& m) const;
   FrictionConsistency friction_consistency(double normal, double solved_with, const ContactSprings& k,
-                                           const ContactMotion& m, const ContactOffsets& o) const override;
-  NextSolve solve_again_for_friction(bool gross, bool states_changed) override;
+                                           const ContactMotion& m, const ContactOffsets& o) const;
+  NextSolve solve_again_for_friction(bool gross, bool states_changed);
   void keep_shear_references(std::span<Contact> contacts, const ContactLinearisation& lin) override;
   bool sliding_keeps_reference() const override { return true; }
 

@@ -6,7 +6,9 @@
 #include <atomic>
 #include <cmath>
 
+#include "contact/holding_law.hpp"
 #include "contact/landing.hpp"
+#include "contact/shi_law.hpp"
 #include "core/archive.hpp"
 #include "core/error.hpp"
 #include "core/parallel.hpp"
@@ -76,11 +78,12 @@ void PenaltyContacts::restore_step(std::span<Contact> contacts) {
 // in it over this attempt's dt; then the first guess from the warm start
 // (predict, below). One pass over the contacts, which also keeps the step's
 // start for a redo after save_step.
-void PenaltyContacts::start_attempt(std::span<Contact> contacts, const ContactLinearisation& lin, double dt,
-                                    const VecX* predicted) {
+template <class Law>
+void PenaltyContacts::start_attempt_as(Law& law, std::span<Contact> contacts, const ContactLinearisation& lin,
+                                       double dt, const VecX* predicted) {
   iterate_.resize(contacts.size());
   dt_ = dt;
-  if (predicted) measure_step(*predicted);
+  if (predicted) law.measure_step(*predicted);
   const bool save = save_pending_;
   save_pending_ = false;
   parallel_for_each(
@@ -91,12 +94,13 @@ void PenaltyContacts::start_attempt(std::span<Contact> contacts, const ContactLi
         ContactIterate& it = iterate_[i];
         it = {lin.offsets[i].s0, c.normal_force, lin.offsets[i].s0, c.state != ContactState::Open,
               lagged_friction(memory_[i], c.state, dt, p_.friction_lag)};
-        if (predicted) predict(c, it, lin.gradients[i], lin.offsets[i], *predicted);
+        if (predicted) predict(law, c, it, lin.gradients[i], lin.offsets[i], *predicted);
       },
       1024);
 }
 
-ContactMotion PenaltyContacts::motion(const ContactGradients& k, const ContactOffsets& o, const VecX& d,
+template <class Law>
+ContactMotion PenaltyContacts::motion(const Law& law, const ContactGradients& k, const ContactOffsets& o, const VecX& d,
                                       const Contact& c, const ContactIterate& it) const {
   const auto dv = d.segment<6>(6 * c.vblock);
   const auto de = d.segment<6>(6 * c.eblock);
@@ -104,11 +108,12 @@ ContactMotion PenaltyContacts::motion(const ContactGradients& k, const ContactOf
   m.dn = o.d0 + k.en_v.dot(dv) + k.en_e.dot(de);  // summed from d0 on: every law's gap to the last bit
   m.ds_step = k.es_v.dot(dv) + k.es_e.dot(de);
   m.ds = it.s0 + m.ds_step;
-  set_bands(m, o, it.closed_at_start);
+  law.set_bands(m, o, it.closed_at_start);
   return m;
 }
 
-bool PenaltyContacts::decide(Contact& c, ContactIterate& it, const JointMaterial& joint, double tan_phi,
+template <class Law>
+bool PenaltyContacts::decide(const Law& law, Contact& c, ContactIterate& it, const JointMaterial& joint, double tan_phi,
                              const ContactSprings& k, const ContactMotion& m) const {
   const ContactState old_state = c.state;
   const bool old_intact = c.intact;
@@ -122,10 +127,10 @@ bool PenaltyContacts::decide(Contact& c, ContactIterate& it, const JointMaterial
   };
   auto lock = [&] {
     c.state = ContactState::Locked;
-    if (locks_unloaded()) it.s0 = 0;
+    if (law.locks_unloaded()) it.s0 = 0;
   };
 
-  if (c.intact && unbonded(joint)) c.intact = false;
+  if (c.intact && law.unbonded(joint)) c.intact = false;
   if (c.intact) {
     // An intact joint holds tension up to σt·L and shear up to c·L + N·tanφ,
     // with the same hysteresis margin as the open-close decision below (at
@@ -153,7 +158,7 @@ bool PenaltyContacts::decide(Contact& c, ContactIterate& it, const JointMaterial
         if (std::abs(shear) > friction_normal(it.lag, normal) * tan_phi + k.ks * m.shear_slack) slide_towards(ds);
         break;
       case ContactState::Sliding:
-        if (locks_again(c, it, normal, tan_phi, k, m)) lock();
+        if (law.locks_again(c, it, normal, tan_phi, k, m)) lock();
         break;
     }
   }
@@ -192,13 +197,14 @@ bool PenaltyContacts::decide(Contact& c, ContactIterate& it, const JointMaterial
 // warm start, a block landing on a slope (scripts/incline.lua) got an N of a
 // penetration it never reached, and its open-close iteration did not settle
 // in five steps.
-void PenaltyContacts::predict(Contact& c, ContactIterate& it, const ContactGradients& k, const ContactOffsets& o,
-                              const VecX& d) const {
+template <class Law>
+void PenaltyContacts::predict(const Law& law, Contact& c, ContactIterate& it, const ContactGradients& k,
+                              const ContactOffsets& o, const VecX& d) const {
   if (c.intact) return;
   const ContactIterationState before = iteration_state(c);
   const ContactIterate iterate = it;
-  const ContactMotion m = motion(k, o, d, c, iterate);
-  decide(c, it, p_.joints[c.joint], p_.tan_friction[c.joint], contact_springs(c, p_), m);
+  const ContactMotion m = motion(law, k, o, d, c, iterate);
+  decide(law, c, it, p_.joints[c.joint], p_.tan_friction[c.joint], contact_springs(c, p_), m);
   if (before.state != ContactState::Open && c.state == ContactState::Open) {
     set_iteration_state(c, before);
     it = iterate;
@@ -232,10 +238,12 @@ void PenaltyContacts::contribute(std::span<const Contact> contacts, const Contac
       1024);
 }
 
-NextSolve PenaltyContacts::check_solve(std::span<Contact> contacts, const ContactLinearisation& lin, const VecX& d) {
+template <class Law>
+NextSolve PenaltyContacts::check_solve_as(Law& law, std::span<Contact> contacts, const ContactLinearisation& lin,
+                                          const VecX& d) {
   const std::size_t nc = contacts.size();
   changed_.resize(nc);
-  measure_step(d);
+  law.measure_step(d);
   std::atomic<bool> any_friction{false};  // a sliding contact's N moved
   std::atomic<bool> any_gross{false};     // ... grossly
   struct Found {
@@ -246,18 +254,18 @@ NextSolve PenaltyContacts::check_solve(std::span<Contact> contacts, const Contac
     Contact& c = contacts[i];
     ContactIterate& it = iterate_[i];
     const ContactSprings springs = contact_springs(c, p_);
-    const ContactMotion m = motion(lin.gradients[i], lin.offsets[i], d, c, it);
+    const ContactMotion m = motion(law, lin.gradients[i], lin.offsets[i], d, c, it);
     const double tan_phi = p_.tan_friction[c.joint];
     const ContactState before = c.state;
     const double solved_with = it.normal_force;  // the N this solve's friction used
     it.solved_normal = solved_with;
-    const bool changed = decide(c, it, p_.joints[c.joint], tan_phi, springs, m);
+    const bool changed = decide(law, c, it, p_.joints[c.joint], tan_phi, springs, m);
     // A contact that slid through the solve with the N of the solve before
     // (or of the prediction), and slides on: whether its friction agrees
     // with the N of this solve (the holding law iterates until it does).
     const FrictionConsistency friction =
         !changed && before == ContactState::Sliding && c.state == ContactState::Sliding
-            ? friction_consistency(it.normal_force, solved_with, springs, m, lin.offsets[i])
+            ? law.friction_consistency(it.normal_force, solved_with, springs, m, lin.offsets[i])
             : FrictionConsistency::Agrees;
     const bool friction_moved = friction != FrictionConsistency::Agrees;
     if (friction == FrictionConsistency::MovedGrossly) any_gross.store(true, std::memory_order_relaxed);
@@ -266,7 +274,7 @@ NextSolve PenaltyContacts::check_solve(std::span<Contact> contacts, const Contac
     c.normal_force = it.normal_force;
     c.shear_force = c.state == ContactState::Locked ? springs.ks * m.ds
                     : c.state == ContactState::Sliding
-                        ? reported_friction_sign(c) * friction_normal(it.lag, c.normal_force) * tan_phi
+                        ? law.reported_friction_sign(c) * friction_normal(it.lag, c.normal_force) * tan_phi
                         : 0.0;
     if (friction_moved) any_friction.store(true, std::memory_order_relaxed);
     return changed ? 2 : friction_moved ? 1 : 0;
@@ -286,7 +294,7 @@ NextSolve PenaltyContacts::check_solve(std::span<Contact> contacts, const Contac
   const bool states_changed = found.changed == 2;
   const NextSolve for_friction =
       any_friction.load(std::memory_order_relaxed)
-          ? solve_again_for_friction(any_gross.load(std::memory_order_relaxed), states_changed)
+          ? law.solve_again_for_friction(any_gross.load(std::memory_order_relaxed), states_changed)
           : NextSolve::None;
   return states_changed ? NextSolve::Counted : for_friction;
 }
@@ -358,5 +366,15 @@ void PenaltyContacts::load(ArchiveReader& ar) {
       throw Error(msg(ar.what(), " is damaged: the contact law's memory of contact ", i, " holds NaN"));
   lagged_friction_held_ = true;  // the restored contacts may hold some
 }
+
+// The laws' passes (each law's start_attempt and check_solve).
+template void PenaltyContacts::start_attempt_as(ShiLaw&, std::span<Contact>, const ContactLinearisation&, double,
+                                                const VecX*);
+template void PenaltyContacts::start_attempt_as(HoldingLaw&, std::span<Contact>, const ContactLinearisation&, double,
+                                                const VecX*);
+template NextSolve PenaltyContacts::check_solve_as(ShiLaw&, std::span<Contact>, const ContactLinearisation&,
+                                                   const VecX&);
+template NextSolve PenaltyContacts::check_solve_as(HoldingLaw&, std::span<Contact>, const ContactLinearisation&,
+                                                   const VecX&);
 
 }  // namespace dda

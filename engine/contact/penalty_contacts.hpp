@@ -70,10 +70,7 @@ class PenaltyContacts : public ContactModel {
   void check(const ContactParameters& p, const Blocks& blocks) const override;
   void save_step(std::span<const Contact> contacts) override;
   void restore_step(std::span<Contact> contacts) override;
-  void start_attempt(std::span<Contact> contacts, const ContactLinearisation& lin, double dt,
-                     const VecX* predicted) override;
   void contribute(std::span<const Contact> contacts, const ContactLinearisation& lin) override;
-  NextSolve check_solve(std::span<Contact> contacts, const ContactLinearisation& lin, const VecX& d) override;
   ContactEnergy energy(std::span<const Contact> contacts, const ContactLinearisation& lin,
                        const VecX& d) const override;
   bool resolves_impacts() const override { return p_.restitution >= 0; }
@@ -89,53 +86,70 @@ class PenaltyContacts : public ContactModel {
 
  protected:
   // ---- What each law says (its own file)
+  // The decisions' questions are asked of every contact in every open-close
+  // iteration, so a law answers them without virtual calls: each law
+  // overrides start_attempt and check_solve with the passes below bound to
+  // itself (start_attempt_as, check_solve_as), which call these by the law's
+  // own type. The defaults here are for a law that does not say otherwise.
+  //
   // Before the decisions on a displacement d (a solve's, or the warm
   // start's): what the bands need of it.
-  virtual void measure_step(const VecX& /*d*/) {}
-  // The bands of the decisions of a contact (m.gap_slack, m.shear_slack).
-  virtual void set_bands(ContactMotion& m, const ContactOffsets& o, bool closed_at_start) const = 0;
+  void measure_step(const VecX& /*d*/) {}
+  // The bands of the decisions of a contact (m.gap_slack, m.shear_slack):
+  //   void set_bands(ContactMotion& m, const ContactOffsets& o, bool closed_at_start) const;
   // An intact joint that is decided as an unbonded contact from the start.
-  virtual bool unbonded(const JointMaterial& /*joint*/) const { return false; }
+  bool unbonded(const JointMaterial& /*joint*/) const { return false; }
   // Whether a contact that closes or locks again does so unloaded (its
-  // shear offset dropped to 0 at its position at the step's start).
-  virtual bool locks_unloaded() const = 0;
-  // Whether a sliding contact locks again.
-  virtual bool locks_again(const Contact& c, const ContactIterate& it, double normal, double tan_phi,
-                           const ContactSprings& k, const ContactMotion& m) const = 0;
+  // shear offset dropped to 0 at its position at the step's start):
+  //   bool locks_unloaded() const;
+  // Whether a sliding contact locks again:
+  //   bool locks_again(const Contact& c, const ContactIterate& it, double normal, double tan_phi,
+  //                    const ContactSprings& k, const ContactMotion& m) const;
   // Whether the friction of a contact that slid through the solve with the
   // normal force `solved_with` and slides on agrees with the solve's own
   // normal force (Agrees: the law does not iterate friction); and, when one
   // did not, whether another solve is wanted for friction alone (`gross`:
   // one moved grossly; `states_changed`: another solve comes anyway).
-  virtual FrictionConsistency friction_consistency(double /*normal*/, double /*solved_with*/,
-                                                   const ContactSprings& /*k*/, const ContactMotion& /*m*/,
-                                                   const ContactOffsets& /*o*/) const {
+  FrictionConsistency friction_consistency(double /*normal*/, double /*solved_with*/, const ContactSprings& /*k*/,
+                                           const ContactMotion& /*m*/, const ContactOffsets& /*o*/) const {
     return FrictionConsistency::Agrees;
   }
-  virtual NextSolve solve_again_for_friction(bool /*gross*/, bool /*states_changed*/) { return NextSolve::None; }
+  NextSolve solve_again_for_friction(bool /*gross*/, bool /*states_changed*/) { return NextSolve::None; }
   // The sign of a sliding contact's reported shear force (Contact::shear_force)
   // against its sliding direction.
-  virtual double reported_friction_sign(const Contact& c) const { return c.slide_sign; }
+  double reported_friction_sign(const Contact& c) const { return c.slide_sign; }
   // The accepted step's shear reference points (Contact::ref_param), and
   // whether a sliding contact keeps one.
   virtual void keep_shear_references(std::span<Contact> contacts, const ContactLinearisation& lin) = 0;
   virtual bool sliding_keeps_reference() const = 0;
+
+  // The open-close passes over the contacts, with the law's questions (above)
+  // asked of `law` (the object itself, by its own type).
+  template <class Law>
+  void start_attempt_as(Law& law, std::span<Contact> contacts, const ContactLinearisation& lin, double dt,
+                        const VecX* predicted);
+  template <class Law>
+  NextSolve check_solve_as(Law& law, std::span<Contact> contacts, const ContactLinearisation& lin, const VecX& d);
 
   // Per contact, parallel to the contact list.
   std::vector<ContactIterate> iterate_;
 
  private:
   // A contact's first guess from the warm start d (start_attempt).
-  void predict(Contact& c, ContactIterate& it, const ContactGradients& k, const ContactOffsets& o, const VecX& d) const;
+  template <class Law>
+  void predict(const Law& law, Contact& c, ContactIterate& it, const ContactGradients& k, const ContactOffsets& o,
+               const VecX& d) const;
   // The decision both laws share: the contact's next state from its motion
   // under the latest displacements (Mohr-Coulomb on the springs' forces,
   // with the law's bands and re-locking). Returns true when the state (or
   // the intact flag, or the sliding direction) changed.
-  bool decide(Contact& c, ContactIterate& it, const JointMaterial& joint, double tan_phi, const ContactSprings& k,
-              const ContactMotion& m) const;
+  template <class Law>
+  bool decide(const Law& law, Contact& c, ContactIterate& it, const JointMaterial& joint, double tan_phi,
+              const ContactSprings& k, const ContactMotion& m) const;
   // A contact's motion under d, from the shear offset s0 in force.
-  ContactMotion motion(const ContactGradients& k, const ContactOffsets& o, const VecX& d, const Contact& c,
-                       const ContactIterate& it) const;
+  template <class Law>
+  ContactMotion motion(const Law& law, const ContactGradients& k, const ContactOffsets& o, const VecX& d,
+                       const Contact& c, const ContactIterate& it) const;
 
   // The per-contact history: the friction lag's memory (friction_lag.hpp).
   std::vector<FrictionMemory> memory_;

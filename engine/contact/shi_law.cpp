@@ -6,17 +6,6 @@
 
 namespace dda {
 
-// Every decision has the model-wide band.
-void ShiLaw::set_bands(ContactMotion& m, const ContactOffsets& /*o*/, bool /*closed_at_start*/) const {
-  m.gap_slack = m.shear_slack = p_.tolerance;
-}
-
-// Once the motion since the step's start reverses (then unloaded).
-bool ShiLaw::locks_again(const Contact& c, const ContactIterate& /*it*/, double /*normal*/, double /*tan_phi*/,
-                         const ContactSprings& /*k*/, const ContactMotion& m) const {
-  return m.ds_step * c.slide_sign < -m.shear_slack;
-}
-
 // A contact that ends the step locked keeps the point it locked at (or takes
 // its position at the step start, where it locked again unloaded); others
 // drop it.

@@ -26,13 +26,27 @@ class ShiLaw final : public PenaltyContacts {
   ContactLaw law() const override { return ContactLaw::Shi; }
   std::span<const IgnoredControl> ignored_controls() const override { return {}; }
   double warm_start_dt(double /*last_dt*/, double dt) const override { return dt; }
+  void start_attempt(std::span<Contact> contacts, const ContactLinearisation& lin, double dt,
+                     const VecX* predicted) override {
+    start_attempt_as(*this, contacts, lin, dt, predicted);
+  }
+  NextSolve check_solve(std::span<Contact> contacts, const ContactLinearisation& lin, const VecX& d) override {
+    return check_solve_as(*this, contacts, lin, d);
+  }
 
  private:
-  void set_bands(ContactMotion& m, const ContactOffsets& o, bool closed_at_start) const override;
-  bool locks_unloaded() const override { return true; }
-  bool locks_again(const Contact& c, const ContactIterate& it, double normal, double tan_phi, const ContactSprings& k,
-                   const ContactMotion& m) const override;
-  double reported_friction_sign(const Contact& c) const override { return -c.slide_sign; }
+  friend class PenaltyContacts;  // asks the decisions' questions below
+  // Every decision has the model-wide band.
+  void set_bands(ContactMotion& m, const ContactOffsets& /*o*/, bool /*closed_at_start*/) const {
+    m.gap_slack = m.shear_slack = p_.tolerance;
+  }
+  bool locks_unloaded() const { return true; }
+  // Once the motion since the step's start reverses (then unloaded).
+  bool locks_again(const Contact& c, const ContactIterate& /*it*/, double /*normal*/, double /*tan_phi*/,
+                   const ContactSprings& /*k*/, const ContactMotion& m) const {
+    return m.ds_step * c.slide_sign < -m.shear_slack;
+  }
+  double reported_friction_sign(const Contact& c) const { return -c.slide_sign; }
   void keep_shear_references(std::span<Contact> contacts, const ContactLinearisation& lin) override;
   bool sliding_keeps_reference() const override { return false; }
 };

@@ -67,8 +67,9 @@ const ControlSpec kControls[] = {
     number(
         "g1", [](Controls& c) -> double& { return c.g1; }, kZeroOrPositive,
         "upper limit of the time step (s); 0 = the default rule (docs/time_step.md, \"The default time "
-        "step\"): a model moved by gravity alone takes sqrt(h_min/|g|)/20, a dynamically loaded one the paper's "
-        "Eqs. 1–3; the run log says which"),
+        "step\"): a model moved by gravity alone takes sqrt(h_min/|g|)/20, a dynamically loaded one that moves as "
+        "bodies (blocks and model within the loads' wavelengths) 1/(20 f) and that, any other the paper's Eqs. 1–3; "
+        "the run log says which"),
     number(
         "g2", [](Controls& c) -> double& { return c.g2; }, kPositive,
         "largest step displacement / half the model height; exceeding it cuts Δt"),

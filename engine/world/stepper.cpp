@@ -60,6 +60,7 @@
 #include "core/parallel.hpp"
 #include "geometry/polygon.hpp"
 #include "world/energy.hpp"
+#include "world/inert_controls.hpp"
 #include "world/time_step_rule.hpp"
 
 namespace dda {
@@ -155,6 +156,8 @@ void Stepper::begin_step(WorldState& w) {
   set_up_threads(w.controls);
   derive_material_constants(w);
   set_up_contact_model(w);
+  refuse_inert_controls(
+      {w.controls, effective_integrator(w), w.blocks.has_meshes(), contact_model_->ignored_controls()});
   start_time_scheme(w);
   set_up_solver(w);
 }

@@ -7,6 +7,8 @@
 #include <cstdio>
 
 #include "core/error.hpp"
+#include "loading/load_frequency.hpp"
+#include "world/wave_model.hpp"
 
 namespace dda {
 
@@ -47,12 +49,20 @@ TimeStepTerm motion_term(const ModelScales& s, double g) {
           msg("sqrt(h_min/|g|)/20, h_min = ", g3(s.h_min), " m, |g| = ", g3(g), " m/s²")};
 }
 
+// The loads' highest frequency: the wave model's, once decided (it sampled
+// the script's functions too), else the loads' own.
+double loads_frequency(const WorldState& w) {
+  return w.wave.decided ? w.wave.frequency : dynamic_load_frequency(w).frequency;
+}
+
 }  // namespace
 
 std::string TimeStepChoice::describe() const {
   if (terms.empty()) return "no blocks";
   std::string text = msg("Δt = ", g3(dt), " s, ",
                          gravity_alone ? "moved by gravity alone (no loads, prescribed motions or incident waves)"
+                         : bodies      ? "loaded dynamically, moving as bodies (every block within the element "
+                                         "size that resolves the loads, the model within a shear wavelength)"
                                        : "loaded dynamically (loads, prescribed motions or incident waves)",
                          ":");
   for (const TimeStepTerm& t : terms)
@@ -67,8 +77,14 @@ TimeStepChoice default_time_step(const WorldState& w) {
   const ModelScales s = model_scales(w);
   const double g = w.controls.gravity.norm();
   choice.gravity_alone = g > 0 && w.loads.empty() && !w.boundaries.drives_motion();
+  const double f = choice.gravity_alone ? 0 : loads_frequency(w);
   if (choice.gravity_alone) {
     choice.terms.push_back(motion_term(s, g));
+  } else if (moves_as_bodies(w, f)) {
+    choice.bodies = true;
+    choice.terms.push_back({"the loads' period", 1 / (20 * f),
+                            msg("1/(20·f), f = ", g3(f), " Hz, the loads' highest frequency (docs/waves.md)")});
+    if (g > 0) choice.terms.push_back(motion_term(s, g));
   } else {
     // The paper's Eqs. 1–3 with a = 0.05 and b = 0.177.
     const double g0 = w.controls.g0 > 0 ? w.controls.g0 : 50 * s.e_max;

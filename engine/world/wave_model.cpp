@@ -93,6 +93,18 @@ double mesh_elements(const WorldState& w, const std::vector<double>& size) {
 
 }  // namespace
 
+bool moves_as_bodies(const WorldState& w, double frequency) {
+  if (!(frequency > 0) || w.blocks.count() == 0) return false;
+  const double extent = model_extent(w.blocks);
+  for (std::size_t b = 0; b < w.blocks.count(); ++b) {
+    const BlockId id = static_cast<BlockId>(b);
+    if (w.blocks.is_element(id)) return false;
+    const double size = wave_element_size(w.rocks[w.blocks.material[b]], frequency);
+    if (first_order_misleads(longest_edge(w.blocks, id), size, extent)) return false;
+  }
+  return true;
+}
+
 std::vector<double> meshes_for_waves(const WorldState& w, double frequency) {
   std::vector<double> size = resolving_meshes(w, frequency);
   if (mesh_elements(w, size) > kWaveMeshElementBudget) size.assign(size.size(), 0.0);

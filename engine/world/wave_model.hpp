@@ -75,6 +75,14 @@ struct WaveModel {
   }
 };
 
+// Whether the model moves as bodies under dynamic loads up to `frequency`
+// (Hz): no block is meshed, and none would mislead as a first-order block
+// (each within the element size that resolves the load, the model within a
+// shear wavelength; first_order_misleads in wave_model.cpp). The loads' waves
+// then cross every block quasi-statically, and the time step need follow
+// only the loads and gravity (world/time_step_rule.hpp).
+bool moves_as_bodies(const WorldState& w, double frequency);
+
 // The decision for the model as it stands before its first step (the blocks
 // to mesh: meshes_for_waves).
 WaveModel choose_wave_model(const WorldState& w, const LoadFrequency& load);

@@ -141,7 +141,7 @@ TEST(TimeIntegration, GeneralizedAlphaIsSecondOrderAtLowFrequency) {
   // (ρ∞ = 0.8) and Newmark.
   auto error_after = [](Integrator integrator, double omega_dt) {
     Oscillator o = oscillator(integrator, omega_dt);
-    o.w.controls().rho_inf = 0.8;
+    if (integrator == Integrator::GeneralizedAlpha) o.w.controls().rho_inf = 0.8;  // (only it reads ρ∞)
     const int steps = static_cast<int>(std::lround(4 * kPi / omega_dt));
     const double t_end = steps * 1e-3;
     for (int n = 0; n < steps; ++n) o.w.step();

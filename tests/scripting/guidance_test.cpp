@@ -44,13 +44,23 @@ TEST_F(Guidance, DefaultTimeStepFollowsWhatMovesTheModel) {
       "b = m:add_block{ {0, 0}, {2, 0}, {2, 0.5}, {0, 0.5} }\n"
       "gravity_dt = m:suggested_dt()\n"
       "m:point_load{ at = {1, 0.25}, fx = 1e3 }\n"
-      "loaded_dt = m:suggested_dt()\n");
+      "loaded_dt = m:suggested_dt()\n"
+      "m:controls{ max_frequency = 10 }\n"
+      "bodies_dt = m:suggested_dt()\n"
+      "m:controls{ max_frequency = 2000 }\n"
+      "waves_dt = m:suggested_dt()\n");
   const double h = 1.0 / 2.0;  // area 1 m² over the longest edge, 2 m
   EXPECT_NEAR(number("gravity_dt"), std::sqrt(h / kG) / 20, 1e-12 * std::sqrt(h / kG) / 20);
   const double E = 10e9, nu = 0.25, rho = 2500;
   const double cp = std::sqrt(E * (1 - nu) / (rho * (1 + nu) * (1 - 2 * nu)));  // plane strain
   const double paper = std::min(0.05 * h / cp, 2 * 0.177 * std::sqrt(rho * 1.0 / (50 * E)));
-  EXPECT_NEAR(number("loaded_dt"), paper, 1e-12 * paper);
+  EXPECT_NEAR(number("loaded_dt"), paper, 1e-12 * paper);  // a held load: no frequency
+  // At 10 Hz the block (2 m) is within the 10.5 m element that resolves the
+  // shear wave and the model within a wavelength: it moves as a body, Δt
+  // follows the load (1/(20 f) = 5 ms, under Δt_g = 11.3 ms). At 2000 Hz
+  // (elements of 0.053 m) the waves inside it count: the paper's rule.
+  EXPECT_NEAR(number("bodies_dt"), 1.0 / 200, 1e-12);
+  EXPECT_NEAR(number("waves_dt"), paper, 1e-12 * paper);
 }
 
 // The run log says which Δt the default rule chose and why.
