@@ -644,7 +644,9 @@ std::vector<Name> stats_names() {
       {"solver",
        "the backend the step started with: `\"pcg\"` or `\"cholmod\"` (a trial of the factor that gives up "
        "finishes its step with PCG)"},
-      {"factorisations", "numeric factorisations of the system (cholmod)"},
+      {"factorisations",
+       "numeric factorisations of the system (cholmod; under `\"auto\"` a step on PCG counts the one "
+       "it makes as it ends, for a trial of the factor in the next step)"},
       {"factor_iterations", "of `cg_iterations`, those preconditioned with the factor (cholmod)"},
       {"solve_regime", "`\"short\"` or `\"long\"` solves"},
       {"step_cuts", "times Δt was cut and the step redone"},
