@@ -72,7 +72,10 @@ void BackgroundRun::main() {
       c.lock.lock();
     }
     bool go_on = true;
-    if (c.state() == RunState::Running) go_on = one_step(failed);  // (else paused while it waited)
+    if (run_.done())
+      go_on = !c.finish_unless_paused();  // (paused just as it came to its end: wait for the resume)
+    else if (c.state() == RunState::Running)
+      go_on = one_step(failed);  // (else paused while it waited)
     if (!go_on) {
       if (!failed.empty()) final_state = RunState::Failed;
       run_.settle_replay_mark();
@@ -118,7 +121,8 @@ int m_start(lua_State* L) {
 }
 
 // m:pause() → t, step, paused: no step begins after it returns; paused is
-// whether a run is paused now (false: none was going, or it had ended).
+// whether a run is paused now (false: none was going, or it had taken its
+// last step).
 int m_pause(lua_State* L) {
   ScriptModel& m = check_model(L, 1, "m:pause");
   RunControl& c = m.control();
@@ -204,7 +208,7 @@ void register_background(lua_State* L) {
        run_plan_options()},
       {"pause", guarded<m_pause>,
        "m:pause() → t, step, paused\nPauses the background run: no step begins after it returns (paused: false "
-       "when none was going); loads, boundaries, controls and outputs can then be changed."},
+       "when none was going or it had taken its last step); loads, boundaries, controls and outputs can then be changed."},
       {"resume", guarded<m_resume>, "m:resume() → boolean\nWhether the paused background run goes on now."},
       {"stop", guarded<m_stop>, "m:stop() → t, step\nEnds the background run at its next step boundary."},
       {"wait", guarded<m_wait>,

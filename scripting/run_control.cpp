@@ -40,6 +40,7 @@ void RunControl::begin(const RunPlanView& plan) {
   notice_.clear();
   behind_ = 0;
   stop_ = false;
+  finishing_ = false;
   cv_.notify_all();
 }
 
@@ -86,6 +87,13 @@ bool RunControl::wait_between_steps(const Clock::time_point* until, const std::f
   return go_on;
 }
 
+bool RunControl::finish_unless_paused() {
+  std::lock_guard g(m_);
+  if (state_ == RunState::Paused) return false;
+  finishing_ = true;
+  return true;
+}
+
 void RunControl::set_behind(double seconds) {
   std::lock_guard g(m_);
   behind_ = seconds;
@@ -93,7 +101,7 @@ void RunControl::set_behind(double seconds) {
 
 bool RunControl::pause() {
   std::lock_guard g(m_);
-  if (state_ != RunState::Running) return false;
+  if (state_ != RunState::Running || finishing_) return false;
   state_ = RunState::Paused;
   cv_.notify_all();
   return true;
@@ -102,7 +110,7 @@ bool RunControl::pause() {
 bool RunControl::hold_next() {
   std::lock_guard g(m_);
   if (state_ == RunState::Paused || hold_next_) return false;
-  if (state_ == RunState::Running)
+  if (state_ == RunState::Running && !finishing_)
     state_ = RunState::Paused;
   else
     hold_next_ = true;

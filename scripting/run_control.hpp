@@ -74,12 +74,18 @@ class RunControl {
   // Ctrl-C in the foreground, polled while paused).
   using Clock = std::chrono::steady_clock;
   bool wait_between_steps(const Clock::time_point* until, const std::function<bool()>& give_up = {});
+  // The run has no step left: from now on pause() is refused, so a pause
+  // that says "paused" never lands on a run about to end. Returns false
+  // when the run was paused first: it then waits between steps as any
+  // paused run does, and asks again once resumed.
+  bool finish_unless_paused();
   // The run's real-time pacing: seconds behind the schedule it could not
   // keep (0 when it keeps up), as the live view shows it.
   void set_behind(double seconds);
 
   // ---- requests, from any thread ----------------------------------------------------------
-  // pause: Running → Paused (no step begins after it returns); resume:
+  // pause: Running → Paused (no step begins after it returns; refused once
+  // the run has no step left); resume:
   // Paused → Running; stop: the run ends at the next step boundary. Each
   // returns whether it changed anything.
   bool pause();
@@ -120,6 +126,7 @@ class RunControl {
   double behind_ = 0;
   bool stop_ = false;
   bool hold_next_ = false;
+  bool finishing_ = false;  // finish_unless_paused() said yes: nothing left to pause
   std::string notice_;  // for take_notice (empty once taken)
   std::thread::id stepping_thread_;
 };

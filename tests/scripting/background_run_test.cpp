@@ -174,3 +174,34 @@ TEST_F(BackgroundRun, RealTimePacingHoldsTheRunToTheClock) {
   const std::string said = ::testing::internal::GetCapturedStderr();
   EXPECT_NE(said.find("could not keep up"), std::string::npos) << said;
 }
+
+// The run's end and a pause cannot cross: once a run has no step left a
+// pause is refused (it would say "paused" of a run that then ends, and the
+// resume would find nothing to resume); a pause that came first holds the
+// run at its end until the resume.
+TEST(RunControlEnd, APauseNeverLandsOnARunThatIsEnding) {
+  RunPlanView plan;
+  plan.background = true;
+  RunControl ending(nullptr);
+  ending.begin(plan);
+  EXPECT_TRUE(ending.finish_unless_paused());
+  EXPECT_FALSE(ending.pause()) << "a pause after the last step would report a run that is about to end as paused";
+  EXPECT_EQ(ending.state(), RunState::Running);
+  ending.end(RunState::Finished, "t = 1 s");
+  EXPECT_EQ(ending.state(), RunState::Finished);
+
+  RunControl paused(nullptr);
+  paused.begin(plan);
+  EXPECT_TRUE(paused.pause());
+  EXPECT_FALSE(paused.finish_unless_paused()) << "a run paused before its end must wait for the resume";
+  EXPECT_TRUE(paused.resume());
+  EXPECT_TRUE(paused.finish_unless_paused());
+
+  RunControl held(nullptr);
+  held.begin(plan);
+  EXPECT_TRUE(held.finish_unless_paused());
+  EXPECT_TRUE(held.hold_next()) << "the live view's Pause at a run's end holds the next run";
+  held.end(RunState::Finished, "t = 1 s");
+  held.begin(plan);
+  EXPECT_EQ(held.state(), RunState::Paused);
+}
