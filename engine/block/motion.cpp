@@ -42,31 +42,22 @@ MotionCheck check_block_motion(const Blocks& blocks, const VecX& d, std::vector<
   return {largest, it == inverted.end() ? -1 : static_cast<BlockId>(it - inverted.begin())};
 }
 
-void move_blocks(Blocks& blocks, const VecX& d_all, std::span<const Vec2> vertex_motion, std::span<const Mat3> elastic,
-                 const TimeScheme& scheme) {
-  parallel_for_each(
-      blocks.count(),
-      [&](std::size_t b) {
-        const Vec6 d = d_all.segment<6>(6 * b);
-        // The scheme's state with the mass of the step's system (the block
-        // as it was).
-        const IntegratedTt mass = block_tt(blocks, b, scheme.mesh_mass).scaled(blocks.mass[b] / blocks.area[b]);
-        const BlockEndState next = scheme.end_state(d, blocks.scheme_state(b), mass);
-        const int first = blocks.vertex_start[b], end = blocks.vertex_start[b + 1];
-        for (int v = first; v < end; ++v) blocks.vertices[v] += vertex_motion[v];
-        const PolygonMoments pm = polygon_moments(std::span<const Vec2>(blocks.vertices).subspan(first, end - first));
-        blocks.centroid[b] = pm.centroid;
-        blocks.area[b] = pm.area;
-        blocks.sxx[b] = pm.sxx;
-        blocks.syy[b] = pm.syy;
-        blocks.sxy[b] = pm.sxy;
-        blocks.stress[b] += elastic[blocks.material[b]] * d.tail<3>();
-        blocks.velocity[b] = next.velocity;
-        blocks.acceleration[b] = next.acceleration;
-        blocks.out_of_balance[b] = next.out_of_balance;
-        blocks.last_displacement[b] = d;
-      },
-      32);
+void move_block(Blocks& blocks, std::size_t b, const Vec6& d, std::span<const Vec2> vertex_motion, const Mat3& elastic,
+                const TimeScheme& scheme, const IntegratedTt& mass) {
+  const BlockEndState next = scheme.end_state(d, blocks.scheme_state(static_cast<BlockId>(b)), mass);
+  const int first = blocks.vertex_start[b], end = blocks.vertex_start[b + 1];
+  for (int v = first; v < end; ++v) blocks.vertices[v] += vertex_motion[v];
+  const PolygonMoments pm = polygon_moments(std::span<const Vec2>(blocks.vertices).subspan(first, end - first));
+  blocks.centroid[b] = pm.centroid;
+  blocks.area[b] = pm.area;
+  blocks.sxx[b] = pm.sxx;
+  blocks.syy[b] = pm.syy;
+  blocks.sxy[b] = pm.sxy;
+  blocks.stress[b] += elastic * d.tail<3>();
+  blocks.velocity[b] = next.velocity;
+  blocks.acceleration[b] = next.acceleration;
+  blocks.out_of_balance[b] = next.out_of_balance;
+  blocks.last_displacement[b] = d;
 }
 
 void move_material_points(std::span<MaterialPoint> points, const Blocks& blocks, const VecX& d) {

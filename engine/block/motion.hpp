@@ -8,6 +8,7 @@
 
 #include "block/blocks.hpp"
 #include "block/time_scheme.hpp"
+#include "core/parallel.hpp"
 
 namespace dda {
 
@@ -24,12 +25,27 @@ struct MotionCheck {
 MotionCheck check_block_motion(const Blocks& blocks, const VecX& d, std::vector<char>& inverted,
                                std::vector<Vec2>& vertex_motion);
 
-// The accepted step: vertices by the motion check_block_motion computed,
-// then the blocks' moments, stresses (elastic[material] times the strains),
-// the time scheme's state (velocity, acceleration, unbalanced force) and
-// last displacements.
+// The accepted step, block by block: vertices by the motion
+// check_block_motion computed, then the block's moments, stress
+// (elastic[material] times the strains), the time scheme's state (velocity,
+// acceleration, unbalanced force) and last displacement. Before a block
+// changes, before_move(b, mass) is called with its mass ρ∫TᵀT as the step's
+// system had it, for what the caller books of the step from the block as it
+// was (the energy budget): one pass over the blocks, each mass made once.
+void move_block(Blocks& blocks, std::size_t b, const Vec6& d, std::span<const Vec2> vertex_motion, const Mat3& elastic,
+                const TimeScheme& scheme, const IntegratedTt& mass);
+template <class BeforeMove>
 void move_blocks(Blocks& blocks, const VecX& d, std::span<const Vec2> vertex_motion, std::span<const Mat3> elastic,
-                 const TimeScheme& scheme);
+                 const TimeScheme& scheme, BeforeMove&& before_move) {
+  parallel_for_each(
+      blocks.count(),
+      [&](std::size_t b) {
+        const IntegratedTt mass = block_tt(blocks, b, scheme.mesh_mass).scaled(blocks.mass[b] / blocks.area[b]);
+        before_move(b, mass);
+        move_block(blocks, b, d.segment<6>(6 * b), vertex_motion, elastic[blocks.material[b]], scheme, mass);
+      },
+      32);
+}
 
 // Material points move with their blocks under d; call before move_blocks
 // (the points move about their block's centroid at the start of the step).

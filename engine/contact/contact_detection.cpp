@@ -121,11 +121,6 @@ bool ContactDetection::detect(const Blocks& blocks, double range, std::vector<Co
   return true;
 }
 
-void ContactDetection::add_rotations(const VecX& d) {
-  parallel_for_each(
-      rotation_since_detection_.size(), [&](std::size_t b) { rotation_since_detection_[b] += d[6 * b + 2]; }, 256);
-}
-
 void ContactDetection::check_loaded(const LoadCheck& check, const Blocks& blocks) const {
   check.require(
       std::isfinite(auto_range_) && auto_range_ >= 0 && std::isfinite(detected_range_) && detected_range_ >= 0,

@@ -57,8 +57,12 @@ class ContactDetection {
   // (-1: new), for the contact law's per-contact history.
   bool detect(const Blocks& blocks, double range, std::vector<Contact>& contacts, ContactLinearisation& linearisation,
               std::vector<int>& previous);
-  // The accepted step's rotations, for the redetection rule.
-  void add_rotations(const VecX& d);
+  // Block b's rotation in the accepted step (its d[2]), for the redetection
+  // rule; called from Update's pass over the blocks (only the blocks the
+  // last search saw have a sum).
+  void add_rotation(std::size_t b, double rotation) {
+    if (b < rotation_since_detection_.size()) rotation_since_detection_[b] += rotation;
+  }
 
   // What a checkpoint holds (core/archive.hpp): the range and what the
   // list's staleness is measured from.

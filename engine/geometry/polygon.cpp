@@ -24,11 +24,13 @@ PolygonMoments polygon_moments(std::span<const Vec2> v) {
   const std::size_t n = v.size();
   if (n < 3) return m;
   // Green's theorem edge sums, in coordinates relative to the first vertex.
+  // (It runs for every block every step: the next vertex without an integer
+  // division.)
   const Vec2 o = v[0];
   double a2 = 0, cx = 0, cy = 0, ixx = 0, iyy = 0, ixy = 0;
   for (std::size_t k = 0; k < n; ++k) {
     const Vec2 p = v[k] - o;
-    const Vec2 q = v[(k + 1) % n] - o;
+    const Vec2 q = v[k + 1 < n ? k + 1 : 0] - o;
     const double c = p.x() * q.y() - q.x() * p.y();
     a2 += c;
     cx += (p.x() + q.x()) * c;

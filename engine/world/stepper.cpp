@@ -51,6 +51,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include <tbb/parallel_invoke.h>
+
 #include "assembly/contact_terms.hpp"
 #include "assembly/mesh_reduction.hpp"
 #include "contact/broad_phase.hpp"
@@ -448,20 +450,40 @@ void Stepper::control_step(WorldState& w, Rejection r) {
 
 // ---- Update -------------------------------------------------------------------
 
-// The accepted step: material points first (they move with their block's old
-// centroid), then the blocks, then what the contacts keep; time advances
-// (unless settling).
+// The accepted step: its energy booked, the contact law's impacts, material
+// points (they move with their block's old centroid), then the blocks (and
+// the blocks' energy terms, in the same pass), then what the contacts keep;
+// time advances (unless settling). The contacts' energy terms are read before
+// an impact changes them; without impacts, beside the blocks' pass (a serial
+// loop: each result its own, so the same bits).
 void Stepper::update(WorldState& w) {
   StageTimer timer(stats_.profile, Stage::Update);
-  account_step_energy(w, solution_, scheme_, elastic_, linearisation_, *contact_model_,
-                      w.controls.fixed_point_factor * g0_, energy_scratch_);
-  resolve_impacts(w);
+  const bool impacts = contact_model_->resolves_impacts();
+  const auto book_contacts = [&] {
+    step_energy_.book_contacts(contact_model_->energy(w.contacts, linearisation_, solution_));
+  };
+  step_energy_.start(w, solution_, scheme_, elastic_, w.controls.fixed_point_factor * g0_);
+  if (impacts) book_contacts();
+  const ImpactWork impact_work = resolve_impacts(w);
+  const VecX& solved = impacts ? solved_ : solution_;
   const Blocks& blocks = w.blocks;
   w.loads.move_points(blocks, solution_);
   w.boundaries.update(blocks, solution_, scheme_);
   move_material_points(w.tracked, blocks, solution_);
-  move_blocks(w.blocks, solution_, vertex_motion_, elastic_, scheme_);
-  detection_.add_rotations(solution_);
+  tbb::parallel_invoke(
+      [&] {
+        move_blocks(w.blocks, solution_, vertex_motion_, elastic_, scheme_,
+                    [&](std::size_t b, const IntegratedTt& mass) {
+                      step_energy_.book_block(w.blocks, b, solved.segment<6>(6 * b), mass);
+                      detection_.add_rotation(b, solution_[6 * b + 2]);
+                    });
+      },
+      [&] {
+        if (!impacts) book_contacts();
+      });
+  step_energy_.account(w);
+  if (stats_.landings > 0)
+    account_impact_energy(w.energy, contact_model_->impact_energy(), impact_work.solved, impact_work.landed);
   contact_model_->commit(w.blocks, w.contacts, linearisation_);
   w.time = w.step_end_time();
   ++w.steps;
@@ -470,20 +492,23 @@ void Stepper::update(WorldState& w) {
 // The contact law's impacts (the landing law, control restitution, off at
 // -1): the contacts that land in the accepted step end it as a rigid-body
 // impact would end them; the step's displacement and its blocks' motion
-// change with it, and the energy budget books what the impacts took.
-void Stepper::resolve_impacts(WorldState& w) {
+// change with it. Returns the boundaries' work over the solve and over the
+// step the law made of it, for the energy budget to book what the impacts
+// took (account_impact_energy, after the step's own terms).
+Stepper::ImpactWork Stepper::resolve_impacts(WorldState& w) {
   const Controls& c = w.controls;
   const bool impacts = contact_model_->resolves_impacts();
   if (impacts) solved_ = solution_;
   const std::vector<char> held = impacts ? w.boundaries.held_blocks(w.blocks.count()) : std::vector<char>();
   stats_.landings = contact_model_->resolve_impacts(w.contacts, linearisation_,
                                                     {w.blocks, scheme_, own_.k, elastic_, held, c.gravity}, solution_);
-  if (stats_.landings == 0) return;
+  if (stats_.landings == 0) return {};
   const double spring = c.fixed_point_factor * g0_, t_end = w.step_end_time();
-  const Boundaries::Work solved = w.boundaries.step_work(w.time, t_end, spring, w.blocks, solved_, scheme_);
-  const Boundaries::Work landed = w.boundaries.step_work(w.time, t_end, spring, w.blocks, solution_, scheme_);
-  account_impact_energy(w.energy, contact_model_->impact_energy(), solved, landed);
+  ImpactWork work;
+  work.solved = w.boundaries.step_work(w.time, t_end, spring, w.blocks, solved_, scheme_);
+  work.landed = w.boundaries.step_work(w.time, t_end, spring, w.blocks, solution_, scheme_);
   check_block_motion(w.blocks, solution_, block_inverted_, vertex_motion_);
+  return work;
 }
 
 // The step's figures; after a clean step Δt grows back towards g1.

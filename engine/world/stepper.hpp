@@ -84,7 +84,10 @@ class Stepper {
   Rejection check_motion(const WorldState& w);
   void control_step(WorldState& w, Rejection r);
   void update(WorldState& w);
-  void resolve_impacts(WorldState& w);
+  struct ImpactWork {
+    Boundaries::Work solved, landed;  // the boundaries' work over the solve, over the step after impacts
+  };
+  ImpactWork resolve_impacts(WorldState& w);
   void finish_step(WorldState& w);
   std::string divergence_message(const WorldState& w) const;  // names the block
   ContactModel& contact_model(const WorldState& w);           // the model of w.controls.contact_law
@@ -113,7 +116,7 @@ class Stepper {
   std::vector<char> row_reassembled_;  // per block row: rewritten by the last assembly
   std::vector<char> block_inverted_;   // per block (check_block_motion's scratch)
   std::vector<Vec2> vertex_motion_;    // per vertex: the last checked solve's motion
-  EnergyScratch energy_scratch_;       // account_step_energy's per-block terms
+  StepEnergy step_energy_;             // the accepted step's energy terms, booked in Update
   MotionCheck motion_;                 // of the last attempt that got to its motion checks
 
   StepStats stats_;  // of the step under way
