@@ -218,7 +218,9 @@ class ContactModel {
   }
   virtual const ImpactEnergy& impact_energy() const;
   // After the blocks moved: what the contacts keep for the next step, and
-  // the impacted blocks' end-of-step state.
+  // the impacted blocks' end-of-step state. Without impacts
+  // (resolves_impacts() false) it touches no block, and may run beside the
+  // pass that moves them.
   virtual void commit(Blocks& blocks, std::span<Contact> contacts, const ContactLinearisation& lin) = 0;
 
   // ---- Checkpoint: the law's own state carried from step to step, its

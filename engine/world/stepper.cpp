@@ -454,8 +454,9 @@ void Stepper::control_step(WorldState& w, Rejection r) {
 // points (they move with their block's old centroid), then the blocks (and
 // the blocks' energy terms, in the same pass), then what the contacts keep;
 // time advances (unless settling). The contacts' energy terms are read before
-// an impact changes them; without impacts, beside the blocks' pass (a serial
-// loop: each result its own, so the same bits).
+// an impact changes them, and what they keep written after the impacted
+// blocks moved; without impacts both run beside the blocks' pass (the energy
+// a serial loop: each result its own, so the same bits).
 void Stepper::update(WorldState& w) {
   StageTimer timer(stats_.profile, Stage::Update);
   const bool impacts = contact_model_->resolves_impacts();
@@ -479,12 +480,16 @@ void Stepper::update(WorldState& w) {
                     });
       },
       [&] {
-        if (!impacts) book_contacts();
+        if (impacts) return;
+        book_contacts();
+        contact_model_->commit(w.blocks, w.contacts, linearisation_);
       });
   step_energy_.account(w);
-  if (stats_.landings > 0)
-    account_impact_energy(w.energy, contact_model_->impact_energy(), impact_work.solved, impact_work.landed);
-  contact_model_->commit(w.blocks, w.contacts, linearisation_);
+  if (impacts) {
+    if (stats_.landings > 0)
+      account_impact_energy(w.energy, contact_model_->impact_energy(), impact_work.solved, impact_work.landed);
+    contact_model_->commit(w.blocks, w.contacts, linearisation_);
+  }
   w.time = w.step_end_time();
   ++w.steps;
 }
