@@ -4,7 +4,7 @@
 // The energy budget (J per metre of thickness): what the blocks and contacts
 // hold, the work each kind of load and boundary does on the blocks, what
 // friction takes, and the balance residual, per step and since the first
-// step. Accounted by account_step_energy (energy.hpp); docs/time_integration.md
+// step. Accounted by StepEnergy (energy.hpp); docs/time_integration.md
 // says what each term is and how the residual reads.
 
 namespace dda {
