@@ -105,9 +105,9 @@ bool HoldingLaw::unbonded(const JointMaterial& joint) const {
 // between a locked solve whose spring exceeds N·tanφ and a sliding one whose
 // motion, measured from the step start, reverses while its spring unloads.
 // Without a shear spring: once the motion reverses.
-bool HoldingLaw::locks_again(const Contact& c, const ContactIterate& it, double normal, double tan_phi,
+bool HoldingLaw::locks_again(const Contact& c, const LaggedFriction& lag, double normal, double tan_phi,
                              const ContactSprings& k, const ContactMotion& m) const {
-  return k.ks > 0 ? k.ks * m.ds * c.slide_sign < friction_normal(it.lag, normal) * tan_phi - k.ks * m.shear_slack
+  return k.ks > 0 ? k.ks * m.ds * c.slide_sign < friction_normal(lag, normal) * tan_phi - k.ks * m.shear_slack
                   : m.ds_step * c.slide_sign < -m.shear_slack;
 }
 

@@ -52,7 +52,7 @@ class HoldingLaw final : public PenaltyContacts {
   void set_bands(ContactMotion& m, const ContactOffsets& o, bool closed_at_start) const;
   bool unbonded(const JointMaterial& joint) const;
   bool locks_unloaded() const { return false; }
-  bool locks_again(const Contact& c, const ContactIterate& it, double normal, double tan_phi, const ContactSprings& k,
+  bool locks_again(const Contact& c, const LaggedFriction& lag, double normal, double tan_phi, const ContactSprings& k,
                    const ContactMotion& m) const;
   FrictionConsistency friction_consistency(double normal, double solved_with, const ContactSprings& k,
                                            const ContactMotion& m, const ContactOffsets& o) const;

@@ -66,8 +66,8 @@ int LandingLaw::slot_of(BlockId b, const Blocks& blocks, const VecX& d, const Ti
 }
 
 int LandingLaw::resolve(std::span<Contact> contacts, const ContactLinearisation& lin,
-                        std::span<ContactIterate> iterates, const ContactParameters& p, const ImpactInputs& in,
-                        VecX& d) {
+                        std::span<ContactIterate> iterates, std::span<const double> solved_friction_normal,
+                        const ContactParameters& p, const ImpactInputs& in, VecX& d) {
   const Blocks& blocks = in.blocks;
   const TimeScheme& scheme = in.scheme;
   const std::span<const char> held = in.held;
@@ -147,7 +147,7 @@ int LandingLaw::resolve(std::span<Contact> contacts, const ContactLinearisation&
     const double n = c.normal_force;
     const double shear = c.state == ContactState::Locked
                              ? k.ks * it.shear
-                             : c.slide_sign * friction_normal(it.lag, it.solved_normal) * p.tan_friction[c.joint];
+                             : c.slide_sign * solved_friction_normal[l.contact] * p.tan_friction[c.joint];
     slots_[l.va].force += n * g.en_v + shear * g.es_v;
     slots_[l.vb].force += n * g.en_e + shear * g.es_e;
   }

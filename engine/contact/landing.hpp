@@ -87,7 +87,8 @@ class LandingLaw {
   // nothing (and returns 0) when p.restitution < 0 (off). `iterates`: the
   // contacts' open-close iteration of the accepted solve.
   int resolve(std::span<Contact> contacts, const ContactLinearisation& lin, std::span<ContactIterate> iterates,
-              const ContactParameters& p, const ImpactInputs& in, VecX& d);
+              std::span<const double> solved_friction_normal, const ContactParameters& p, const ImpactInputs& in,
+              VecX& d);
   const ImpactEnergy& energy() const { return energy_; }
   // After move_blocks: the impacted blocks' end-of-step state (velocity and
   // what Shi's scheme derives from it).

@@ -82,6 +82,9 @@ template <class Law>
 void PenaltyContacts::start_attempt_as(Law& law, std::span<Contact> contacts, const ContactLinearisation& lin,
                                        double dt, const VecX* predicted) {
   iterate_.resize(contacts.size());
+  const bool lagging = p_.friction_lag > 0;
+  lag_.resize(lagging ? contacts.size() : 0);
+  solved_friction_normal_.resize(resolves_impacts() ? contacts.size() : 0);
   dt_ = dt;
   if (predicted) law.measure_step(*predicted);
   const bool save = save_pending_;
@@ -92,9 +95,9 @@ void PenaltyContacts::start_attempt_as(Law& law, std::span<Contact> contacts, co
         Contact& c = contacts[i];
         if (save) saved_[i] = iteration_state(c);
         ContactIterate& it = iterate_[i];
-        it = {lin.offsets[i].s0, c.normal_force, lin.offsets[i].s0, c.state != ContactState::Open,
-              lagged_friction(memory_[i], c.state, dt, p_.friction_lag)};
-        if (predicted) predict(law, c, it, lin.gradients[i], lin.offsets[i], *predicted);
+        it = {lin.offsets[i].s0, c.normal_force, lin.offsets[i].s0, c.state != ContactState::Open};
+        if (lagging) lag_[i] = lagged_friction(memory_[i], c.state, dt, p_.friction_lag);
+        if (predicted) predict(law, c, it, lag(i), lin.gradients[i], lin.offsets[i], *predicted);
       },
       1024);
 }
@@ -113,8 +116,9 @@ ContactMotion PenaltyContacts::motion(const Law& law, const ContactGradients& k,
 }
 
 template <class Law>
-bool PenaltyContacts::decide(const Law& law, Contact& c, ContactIterate& it, const JointMaterial& joint, double tan_phi,
-                             const ContactSprings& k, const ContactMotion& m) const {
+bool PenaltyContacts::decide(const Law& law, Contact& c, ContactIterate& it, const LaggedFriction& lag,
+                             const JointMaterial& joint, double tan_phi, const ContactSprings& k,
+                             const ContactMotion& m) const {
   const ContactState old_state = c.state;
   const bool old_intact = c.intact;
   const std::int8_t old_sign = c.slide_sign;
@@ -155,10 +159,10 @@ bool PenaltyContacts::decide(const Law& law, Contact& c, ContactIterate& it, con
         lock();  // just closed: locked first; the next iteration checks friction
         break;
       case ContactState::Locked:
-        if (std::abs(shear) > friction_normal(it.lag, normal) * tan_phi + k.ks * m.shear_slack) slide_towards(ds);
+        if (std::abs(shear) > friction_normal(lag, normal) * tan_phi + k.ks * m.shear_slack) slide_towards(ds);
         break;
       case ContactState::Sliding:
-        if (law.locks_again(c, it, normal, tan_phi, k, m)) lock();
+        if (law.locks_again(c, lag, normal, tan_phi, k, m)) lock();
         break;
     }
   }
@@ -198,13 +202,13 @@ bool PenaltyContacts::decide(const Law& law, Contact& c, ContactIterate& it, con
 // penetration it never reached, and its open-close iteration did not settle
 // in five steps.
 template <class Law>
-void PenaltyContacts::predict(const Law& law, Contact& c, ContactIterate& it, const ContactGradients& k,
-                              const ContactOffsets& o, const VecX& d) const {
+void PenaltyContacts::predict(const Law& law, Contact& c, ContactIterate& it, const LaggedFriction& lag,
+                              const ContactGradients& k, const ContactOffsets& o, const VecX& d) const {
   if (c.intact) return;
   const ContactIterationState before = iteration_state(c);
   const ContactIterate iterate = it;
   const ContactMotion m = motion(law, k, o, d, c, iterate);
-  decide(law, c, it, p_.joints[c.joint], p_.tan_friction[c.joint], contact_springs(c, p_), m);
+  decide(law, c, it, lag, p_.joints[c.joint], p_.tan_friction[c.joint], contact_springs(c, p_), m);
   if (before.state != ContactState::Open && c.state == ContactState::Open) {
     set_iteration_state(c, before);
     it = iterate;
@@ -233,7 +237,7 @@ void PenaltyContacts::contribute(std::span<const Contact> contacts, const Contac
         const ContactIterate& it = iterate_[i];
         t.normal = t.kn * lin.offsets[i].d0;
         t.shear = t.shear_spring ? t.ks * it.s0
-                                 : c.slide_sign * (friction_normal(it.lag, it.normal_force) * p_.tan_friction[c.joint]);
+                                 : c.slide_sign * (friction_normal(lag(i), it.normal_force) * p_.tan_friction[c.joint]);
       },
       1024);
 }
@@ -257,9 +261,10 @@ NextSolve PenaltyContacts::check_solve_as(Law& law, std::span<Contact> contacts,
     const ContactMotion m = motion(law, lin.gradients[i], lin.offsets[i], d, c, it);
     const double tan_phi = p_.tan_friction[c.joint];
     const ContactState before = c.state;
+    const LaggedFriction lag_i = lag(i);
     const double solved_with = it.normal_force;  // the N this solve's friction used
-    it.solved_normal = solved_with;
-    const bool changed = decide(law, c, it, p_.joints[c.joint], tan_phi, springs, m);
+    if (!solved_friction_normal_.empty()) solved_friction_normal_[i] = friction_normal(lag_i, solved_with);
+    const bool changed = decide(law, c, it, lag_i, p_.joints[c.joint], tan_phi, springs, m);
     // A contact that slid through the solve with the N of the solve before
     // (or of the prediction), and slides on: whether its friction agrees
     // with the N of this solve (the holding law iterates until it does).
@@ -274,7 +279,7 @@ NextSolve PenaltyContacts::check_solve_as(Law& law, std::span<Contact> contacts,
     c.normal_force = it.normal_force;
     c.shear_force = c.state == ContactState::Locked ? springs.ks * m.ds
                     : c.state == ContactState::Sliding
-                        ? law.reported_friction_sign(c) * friction_normal(it.lag, c.normal_force) * tan_phi
+                        ? law.reported_friction_sign(c) * friction_normal(lag_i, c.normal_force) * tan_phi
                         : 0.0;
     if (friction_moved) any_friction.store(true, std::memory_order_relaxed);
     return changed ? 2 : friction_moved ? 1 : 0;
@@ -327,7 +332,7 @@ ContactEnergy PenaltyContacts::energy(std::span<const Contact> contacts, const C
 
 int PenaltyContacts::resolve_impacts(std::span<Contact> contacts, const ContactLinearisation& lin,
                                      const ImpactInputs& in, VecX& d) {
-  return landing_->resolve(contacts, lin, iterate_, p_, in, d);
+  return landing_->resolve(contacts, lin, iterate_, solved_friction_normal_, p_, in, d);
 }
 
 const ImpactEnergy& PenaltyContacts::impact_energy() const { return landing_->energy(); }
@@ -348,7 +353,7 @@ void PenaltyContacts::commit(Blocks& blocks, std::span<Contact> contacts, const 
   parallel_for_each(
       contacts.size(),
       [&](std::size_t i) {
-        remember_friction(memory_[i], contacts[i].state, contacts[i].normal_force, iterate_[i].lag, dt_, t_r);
+        remember_friction(memory_[i], contacts[i].state, contacts[i].normal_force, lag(i), dt_, t_r);
       },
       1024);
 }

@@ -21,7 +21,9 @@ namespace dda {
 
 class LandingLaw;
 
-// Per-contact values that change during the open-close iteration of a step.
+// Per-contact values that change during the open-close iteration of a step
+// (32 bytes: every pass of the iteration reads them; what only the friction
+// lag and the landing law need is kept apart, below).
 struct ContactIterate {
   // Shear offset of the spring at the step start: the shear force the
   // contact carried into the step over ks (the holding law puts the
@@ -37,12 +39,6 @@ struct ContactIterate {
   // not the friction band of a share of the step's translations, which for a
   // block landing fast is many times the force that stops it (holding_law.cpp).
   bool closed_at_start = false;
-  // Friction that lags the normal force (friction_lag.hpp): N_f0 and w of
-  // the step.
-  LaggedFriction lag{};
-  // The normal force the last solve's friction used (the landing law,
-  // landing.hpp, takes that solve's forces out of the step).
-  double solved_normal = 0;
 };
 
 // A contact under a displacement d of the blocks (a solve's, or a warm
@@ -103,7 +99,7 @@ class PenaltyContacts : public ContactModel {
   // shear offset dropped to 0 at its position at the step's start):
   //   bool locks_unloaded() const;
   // Whether a sliding contact locks again:
-  //   bool locks_again(const Contact& c, const ContactIterate& it, double normal, double tan_phi,
+  //   bool locks_again(const Contact& c, const LaggedFriction& lag, double normal, double tan_phi,
   //                    const ContactSprings& k, const ContactMotion& m) const;
   // Whether the friction of a contact that slid through the solve with the
   // normal force `solved_with` and slides on agrees with the solve's own
@@ -133,19 +129,27 @@ class PenaltyContacts : public ContactModel {
 
   // Per contact, parallel to the contact list.
   std::vector<ContactIterate> iterate_;
+  // Friction that lags the normal force (friction_lag.hpp): each contact's
+  // N_f0 and w of the attempt, with friction_lag on; empty without it, when
+  // every contact's is LaggedFriction{} (friction follows N).
+  std::vector<LaggedFriction> lag_;
+  LaggedFriction lag(std::size_t i) const { return lag_.empty() ? LaggedFriction{} : lag_[i]; }
+  // With the landing law on: the friction normal force each contact's last
+  // solve used (landing.hpp takes that solve's forces out of the step).
+  std::vector<double> solved_friction_normal_;
 
  private:
   // A contact's first guess from the warm start d (start_attempt).
   template <class Law>
-  void predict(const Law& law, Contact& c, ContactIterate& it, const ContactGradients& k, const ContactOffsets& o,
-               const VecX& d) const;
+  void predict(const Law& law, Contact& c, ContactIterate& it, const LaggedFriction& lag, const ContactGradients& k,
+               const ContactOffsets& o, const VecX& d) const;
   // The decision both laws share: the contact's next state from its motion
   // under the latest displacements (Mohr-Coulomb on the springs' forces,
   // with the law's bands and re-locking). Returns true when the state (or
   // the intact flag, or the sliding direction) changed.
   template <class Law>
-  bool decide(const Law& law, Contact& c, ContactIterate& it, const JointMaterial& joint, double tan_phi,
-              const ContactSprings& k, const ContactMotion& m) const;
+  bool decide(const Law& law, Contact& c, ContactIterate& it, const LaggedFriction& lag, const JointMaterial& joint,
+              double tan_phi, const ContactSprings& k, const ContactMotion& m) const;
   // A contact's motion under d, from the shear offset s0 in force.
   template <class Law>
   ContactMotion motion(const Law& law, const ContactGradients& k, const ContactOffsets& o, const VecX& d,

@@ -42,7 +42,7 @@ class ShiLaw final : public PenaltyContacts {
   }
   bool locks_unloaded() const { return true; }
   // Once the motion since the step's start reverses (then unloaded).
-  bool locks_again(const Contact& c, const ContactIterate& /*it*/, double /*normal*/, double /*tan_phi*/,
+  bool locks_again(const Contact& c, const LaggedFriction& /*lag*/, double /*normal*/, double /*tan_phi*/,
                    const ContactSprings& /*k*/, const ContactMotion& m) const {
     return m.ds_step * c.slide_sign < -m.shear_slack;
   }
