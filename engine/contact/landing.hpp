@@ -85,7 +85,9 @@ class LandingLaw {
   // The landing law on the accepted step d (changed in place; the caller
   // moves the blocks with it): the number of contacts that landed. Does
   // nothing (and returns 0) when p.restitution < 0 (off). `iterates`: the
-  // contacts' open-close iteration of the accepted solve.
+  // contacts' open-close iteration of the accepted solve;
+  // `solved_friction_normal`: per contact, the friction normal force of
+  // that solve (friction_normal of the N it used).
   int resolve(std::span<Contact> contacts, const ContactLinearisation& lin, std::span<ContactIterate> iterates,
               std::span<const double> solved_friction_normal, const ContactParameters& p, const ImpactInputs& in,
               VecX& d);
