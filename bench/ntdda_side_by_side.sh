@@ -8,6 +8,7 @@
 #   bench/ntdda_side_by_side.sh /path/to/ntdda            # walls 10 20 40, 3 runs each
 #   WALLS="10 20" RUNS=5 bench/ntdda_side_by_side.sh /path/to/ntdda
 #   THREADS="1 2" SOLVERS="auto pcg cholmod" bench/ntdda_side_by_side.sh /path/to/ntdda
+#   OURS="holding:default" bench/ntdda_side_by_side.sh /path/to/ntdda   # our defaults alone
 #
 # ntdda is not part of the build. Its checkout is read, never written: the
 # sources are copied into $WORK (default /tmp/ntdda-side-by-side; ntdda's own
@@ -38,10 +39,10 @@
 # Opencriteria f0, fractions of w0 = half the model's larger side) are both set
 # to 2e-7: with its default s0 = 2e-4 a contact that opened only closes again
 # after penetrating 2e-4 w0 (4 mm on wall(40)), and the quasi-static wall falls
-# freely. This engine runs Shi's contact law (contact_law = "shi", ntdda's law,
-# pinned by ntdda_wall.lua) with its defaults (contact_tolerance 1e-9 of half the
-# model height) and, in the rows marked "tol=ntdda", with contact_tolerance set
-# to ntdda's 2e-7 w0.
+# freely. This engine runs each LAW:TOL of OURS (default "holding:default
+# shi:default shi:ntdda"): its default contact law ("holding", whose bands are
+# its own) at its defaults, and Shi's law (ntdda's) with contact_tolerance at
+# its default (1e-9 of half the model height) and at ntdda's 2e-7 w0 ("ntdda").
 #
 # Runs alternate (ntdda, ours, ntdda, ours, ...) so that a slow spell of the
 # shared machine hits both; the table gives medians. Per simulated millisecond:
@@ -62,7 +63,7 @@ steps=${STEPS:-10}
 warmup=${WARMUP:-2}
 threads_list=${THREADS:-1}
 solvers=${SOLVERS:-auto}
-ours_tolerances=${OURS_TOL:-default ntdda}
+ours_runs=${OURS:-holding:default shi:default shi:ntdda}
 mkdir -p "$work"
 
 # --- build ntdda out of its tree ------------------------------------------------
@@ -260,9 +261,10 @@ run_ntdda() {  # n type -> "cpu_ms oc sim_ms blocks settlement_um"
   awk '/^NTDDA/ { print $5, $7, $9, $3, $11 }' "$dir/run.log"
 }
 
-run_ours() {  # n gg threads solver tol -> "cpu_ms oc sim_ms cuts solver settlement_um"
+run_ours() {  # n gg threads solver law:tol -> "cpu_ms oc sim_ms cuts solver settlement_um cg factorisations"
   "$dda" run "$root/bench/ntdda_wall.lua" --quiet --out "$work" --set n="$1" --set gg="$2" --set threads="$3" \
-    --set solver="$4" --set tol="$5" --set steps="$steps" --set warmup="$warmup" | awk '/^OURS/ { print $3, $5, $7, $9, $11, $13 }'
+    --set solver="$4" --set law="${5%%:*}" --set tol="${5#*:}" --set steps="$steps" --set warmup="$warmup" |
+    awk '/^OURS/ { print $3, $5, $7, $9, $11, $13, $17, $19 }'
 }
 
 median() { sort -g | awk '{ v[NR] = $1 } END { print v[int((NR + 1) / 2)] }'; }
@@ -270,8 +272,8 @@ median() { sort -g | awk '{ v[NR] = $1 } END { print v[int((NR + 1) / 2)] }'; }
 echo "building ntdda from $ntdda in $work ..." >&2
 build_ntdda
 printf "| wall | blocks | regime | ntdda CPU ms/step | ntdda open-close/step | ntdda settlement µm |"
-printf " ours: threads, solver (ran), contact tolerance | ours CPU ms/step | ours open-close/step | ours Δt cuts | ours settlement µm | ntdda/ours per simulated ms |\n"
-printf "|---|---|---|---|---|---|---|---|---|---|---|---|\n"
+printf " ours: threads, solver (ran), law:tolerance | ours CPU ms/step | ours open-close/step | ours CG/step | ours factorisations/step | ours Δt cuts | ours settlement µm | ntdda/ours per simulated ms |\n"
+printf "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n"
 for n in $walls; do
   for regime in quasi-static dynamic; do
     if [[ $regime == quasi-static ]]; then type=static gg=0; else type=dynamic gg=1; fi
@@ -285,8 +287,8 @@ for n in $walls; do
       run_ntdda "$n" "$type" >> "$dir/ntdda.txt"
       for t in $threads_list; do
         for s in $solvers; do
-          for tol in $ours_tolerances; do
-            run_ours "$n" "$gg" "$t" "$s" "$tol" >> "$dir/ours_${t}_${s}_${tol}.txt"
+          for tol in $ours_runs; do
+            run_ours "$n" "$gg" "$t" "$s" "$tol" >> "$dir/ours_${t}_${s}_${tol/:/_}.txt"
           done
         done
       done
@@ -296,21 +298,24 @@ for n in $walls; do
     nt_sim=$(cut -d' ' -f3 "$dir/ntdda.txt" | median)
     blocks=$(head -1 "$dir/ntdda.txt" | cut -d' ' -f4)
     nt_settle=$(cut -d' ' -f5 "$dir/ntdda.txt" | median)
-    nt_per=$(awk -v a="$nt_ms" -v b="$nt_sim" 'BEGIN { printf "%.1f", a / b }')
+    nt_per=$(awk -v a="$nt_ms" -v b="$nt_sim" 'BEGIN { printf "%.4f", a / b }')
     for t in $threads_list; do
       for s in $solvers; do
-        for tol in $ours_tolerances; do
-          f=$dir/ours_${t}_${s}_${tol}.txt
+        for tol in $ours_runs; do
+          f=$dir/ours_${t}_${s}_${tol/:/_}.txt
           ms=$(cut -d' ' -f1 "$f" | median)
           oc=$(cut -d' ' -f2 "$f" | median)
           sim=$(cut -d' ' -f3 "$f" | median)
           cuts=$(cut -d' ' -f4 "$f" | median)
           used=$(cut -d' ' -f5 "$f" | sort | uniq | paste -sd/)
           settle=$(cut -d' ' -f6 "$f" | median)
-          per=$(awk -v a="$ms" -v b="$sim" 'BEGIN { printf "%.1f", a / b }')
+          cg=$(cut -d' ' -f7 "$f" | median)
+          fact=$(cut -d' ' -f8 "$f" | median)
+          per=$(awk -v a="$ms" -v b="$sim" 'BEGIN { printf "%.4f", a / b }')
           ratio=$(awk -v a="$nt_per" -v b="$per" 'BEGIN { printf "%.2f", a / b }')
-          printf "| wall(%s) | %s | %s | %.1f | %.2f | %.3f | %s, %s (%s), %s | %.1f | %.2f | %s | %.3f | %s |\n" \
-            "$n" "$blocks" "$regime" "$nt_ms" "$nt_oc" "$nt_settle" "$t" "$s" "$used" "$tol" "$ms" "$oc" "$cuts" "$settle" "$ratio"
+          printf "| wall(%s) | %s | %s | %.1f | %.2f | %.3f | %s, %s (%s), %s | %.1f | %.2f | %.0f | %.2f | %s | %.3f | %s |\n" \
+            "$n" "$blocks" "$regime" "$nt_ms" "$nt_oc" "$nt_settle" "$t" "$s" "$used" "$tol" "$ms" "$oc" "$cg" "$fact" "$cuts" \
+            "$settle" "$ratio"
         done
       done
     done

@@ -14,7 +14,8 @@
 --          --set warmup=2.
 -- Run:     build/dda run bench/ntdda_wall.lua --set n=20 --set gg=1
 -- Writes:  one line: OURS cpu_ms_per_step X oc_per_step X sim_ms_per_step X cuts X
---          solver S settlement_um X wall_ms_per_step X (CPU time of the process,
+--          solver S settlement_um X wall_ms_per_step X cg_per_step X
+--          factorisations_per_step X (CPU time of the process,
 --          all threads, from os.clock; settlement: the bricks' mean centroid
 --          displacement downwards over the whole run, µm; wall: the steps' own
 --          elapsed time, m:stats().t_total).
@@ -44,11 +45,12 @@ elseif tol ~= "default" then
 end
 m:step(warmup)
 local t_start, cpu_start = m:time(), os.clock()
-local oc, cuts, wall = 0, 0, 0
+local oc, cuts, wall, cg, factorisations = 0, 0, 0, 0, 0
 for _ = 1, steps do
   m:step(1)
   local s = m:stats()
   oc, cuts, wall = oc + s.open_close_iterations, cuts + s.step_cuts, wall + s.t_total
+  cg, factorisations = cg + s.cg_iterations, factorisations + s.factorisations
 end
 local cpu = os.clock() - cpu_start
 -- The wall's settlement: the bricks' mean centroid displacement since the start.
@@ -57,6 +59,6 @@ for _, b in ipairs(m:blocks{ where = function(b) local _, y = b:centroid() retur
   local _, uy = b:displacement()
   sum, count = sum - uy, count + 1
 end
-print(string.format("OURS cpu_ms_per_step %.3f oc_per_step %.3f sim_ms_per_step %.6f cuts %d solver %s settlement_um %.4f wall_ms_per_step %.3f",
+print(string.format("OURS cpu_ms_per_step %.3f oc_per_step %.3f sim_ms_per_step %.6f cuts %d solver %s settlement_um %.4f wall_ms_per_step %.3f cg_per_step %.1f factorisations_per_step %.2f",
   1e3 * cpu / steps, oc / steps, 1e3 * (m:time() - t_start) / steps, cuts, m:stats().solver, 1e6 * sum / count,
-  1e3 * wall / steps))
+  1e3 * wall / steps, cg / steps, factorisations / steps))

@@ -17,7 +17,8 @@
 --          --set gg=1 makes a wall dynamic (row wall(40)gg1);
 --          --set integrator=newmark|generalized_alpha (default: the scene's, shi).
 --          --set law=shi|holding: the contact law (default: the scene's; the walls take the
---          engine's default).
+--          engine's default); --set stages=true also prints each stage's ms per step
+--          (scripts/bench/serial_fractions.sh reads it).
 -- Run:     build/dda run scripts/bench/bench.lua --set scene=wall --set n=20 --set threads=2 [--set csv=FILE]
 --          (scripts/bench/run.sh runs the whole table, one process per row so
 --          that each row's peak memory is its own).
@@ -46,6 +47,7 @@ local predict = dda.param("predict", true)  -- false: open-close iterations star
 local patch = dda.param("patch", -1)  -- re-solve patch hops; -1 keeps the engine's default
 local solver = dda.param("solver", "")  -- "pcg" or "cholmod"; "" keeps the automatic choice
 local gg = dda.param("gg", -1)  -- the dynamic parameter; -1 keeps the scene's
+local stages = dda.param("stages", false)  -- true: also print each stage's ms per step
 local law = dda.param("law", "")  -- contact_law; "" keeps the scene's (the engine's default for walls)
 
 local m, name
@@ -84,7 +86,8 @@ if integrator ~= "" then m:controls{ integrator = integrator } end
 if patch >= 0 then m:controls{ patch_hops = patch } end
 m:step(warmup)
 local cpu_start = os.clock()
-local sum = { t_detect = 0, t_assemble = 0, t_solve = 0, t_check = 0, t_update = 0, t_total = 0,
+local sum = { t_detect = 0, t_predict = 0, t_assemble = 0, t_solve = 0, t_check = 0, t_control = 0, t_update = 0,
+              t_total = 0,
               open_close_iterations = 0, cg_iterations = 0, patch_iterations = 0, step_cuts = 0,
               factorisations = 0 }
 for _ = 1, steps do
@@ -120,6 +123,13 @@ print(string.format("%-10s threads %d  blocks %6d  contacts %7d  %9.2f ms/step (
   name, threads, blocks, contacts, ms, cpu_ms, blocks * steps / total, sum.open_close_iterations / steps,
   sum.cg_iterations / steps, sum.patch_iterations / steps, sum.step_cuts, m:stats().solver,
   sum.factorisations / steps))
+if stages then
+  local line = { "stages ms/step:" }
+  for _, k in ipairs{ "detect", "predict", "assemble", "solve", "check", "control", "update", "total" } do
+    line[#line + 1] = string.format("%s %.4f", k, 1e3 * sum["t_" .. k] / steps)
+  end
+  print(table.concat(line, " "))
+end
 if csv ~= "" then
   local f = assert(io.open(csv, "a"))
   f:write(row, "\n")
