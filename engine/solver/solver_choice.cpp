@@ -170,7 +170,8 @@ AutoSolver::FactorCosts AutoSolver::factor_costs(const CholmodFactor& f) {
   const double product_flops = 72.0 * static_cast<double>(f.stored_blocks());
   if (!(product_flops > 0)) return {};
   return {kSolveFlopWeight * 4 * f.factor_entries() / product_flops,
-          kFactorFlopWeight * f.factor_flops() / product_flops + kFactorProducts};
+          (kFactorFlopWeight * f.factor_flops() + kFactorEntryWeight * f.factor_entries()) / product_flops +
+              kFactorProducts};
 }
 
 double AutoSolver::direct_step_work(long iterations, int factorisations) const {

@@ -5,15 +5,17 @@
 // (cholmod_solver.hpp), chosen once per step (SolverSettings::kind; Auto
 // below).
 //
-// Auto decides from the work the run counted, in units of one product A·x:
+// Auto decides from the work the run counted, in units of one PCG iteration
+// (about one product A·x):
 //
 //   * PCG's work in a step: its CG iterations × kPcgIterationWork.
 //   * The factor's work in a step: its CG iterations × (1 + the two
 //     triangular solves) + its factorisations × the factorisation, from
 //     CHOLMOD's own counts (nnz(L), flops) against the product's 72 flops per
 //     stored block, each weighted by how fast this kind of flop runs
-//     (kSolveFlopWeight, kFactorFlopWeight, kFactorProducts; fitted on
-//     walls 20 to 100, see below and docs/direct_solver.md).
+//     (kSolveFlopWeight, kFactorFlopWeight, kFactorEntryWeight,
+//     kFactorProducts; fitted on walls 10 to 100, see below and
+//     docs/direct_solver.md).
 //
 //   1. Steps start with PCG. After a PCG step whose solves took over
 //      kToDirect CG iterations each (stiff systems: walls, slopes, long
@@ -90,23 +92,27 @@ class AutoSolver final : public LinearSolver {
   static constexpr double kTrialBudget = 0.5;  // of a PCG step: what a trial may cost beyond PCG
   static constexpr int kRetrySteps = 50;       // PCG steps before the factor is tried again
   static constexpr int kMeanSteps = 3;         // steps on the factor averaged alike (rule 3)
-  // The model's constants, fitted to the CPU time per step of wall(20),
-  // wall(40) and wall(100) with each solver on one thread (12 steps each,
-  // quasi-static and dynamic, both contact laws; docs/direct_solver.md): a PCG
-  // iteration costs about one product (the stored product dominates it); a
-  // CG iteration with the factor 14, 19 and 23 PCG iterations, its two
-  // triangular solves reading each entry of L once (2.8 product flops per
-  // flop); a numeric factorisation 290, 290 and 380 of them, far from its
-  // flop count (×6 from wall(20) to wall(100)): the values copied in, the
-  // small supernodes and the stored matrix assembled for it cost in
-  // proportion to the matrix (kFactorProducts), the dense kernels by their
-  // flops (a quarter of a product flop each).
-  static constexpr double kPcgIterationWork = 1.0;   // a PCG iteration in products A·x
-  static constexpr double kSolveFlopWeight = 2.8;    // a triangular-solve flop in product flops
-  static constexpr double kFactorFlopWeight = 0.25;  // a factorisation flop in product flops
-  static constexpr double kFactorProducts = 200;     // a factorisation's cost besides its flops, in products
+  // The model's constants, fitted to the CPU time per step, within the step,
+  // of walls 10, 20, 40 and 100 with each solver on one thread (the CG
+  // iterations, factorisations and their time; docs/direct_solver.md). The
+  // unit is a PCG iteration as the step runs it: a product and the CG's
+  // vector passes, 1.1 to 1.9 products measured alone (the passes weigh most
+  // where the product is smallest). A CG iteration with the factor cost 4.9,
+  // 7.9, 16.5 and 17.7 PCG iterations (its two triangular solves read each
+  // entry of L once: 1.7 product flops per flop); a numeric factorisation
+  // 200-240, 340, 440 and 450, nowhere near its flop count (×16 from
+  // wall(10) to wall(100)): its cost follows L's entries (the values scattered
+  // into L, the supernodes' passes over it: kFactorEntryWeight each) plus a
+  // part that follows the matrix (the values copied in, kFactorProducts), and
+  // the dense kernels' flops run fast on the large supernodes (a tenth of a
+  // product flop each).
+  static constexpr double kPcgIterationWork = 1.0;   // a PCG iteration, the unit
+  static constexpr double kSolveFlopWeight = 1.7;    // a triangular-solve flop in product flops
+  static constexpr double kFactorFlopWeight = 0.1;   // a factorisation flop in product flops
+  static constexpr double kFactorEntryWeight = 160;  // a factorisation's work per entry of L, in product flops
+  static constexpr double kFactorProducts = 60;      // a factorisation's part that follows the matrix, in products
 
-  // The cost model's figures for a factor of these sizes, in products A·x:
+  // The cost model's figures for a factor of these sizes, in PCG iterations:
   // a solve with it (its two triangular solves), and a numeric
   // factorisation with the stored matrix assembled for it. A CG iteration
   // with the factor costs 1 + solve.
@@ -119,7 +125,7 @@ class AutoSolver final : public LinearSolver {
   LinearSolver& current() { return on_direct_ ? static_cast<LinearSolver&>(*direct_) : pcg_; }
   SolveReport solve_from(const VecX& b, VecX& x, std::span<const char> changed_rows);
   void choose();
-  // The factor's work in products over `iterations` CG iterations and
+  // The factor's work in PCG iterations over `iterations` CG iterations and
   // `factorisations` (this step's counts by default); in a trial step its
   // first factorisation counts as spread over kRetrySteps steps.
   double direct_step_work(long iterations, int factorisations) const;
