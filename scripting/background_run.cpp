@@ -208,7 +208,8 @@ void register_background(lua_State* L) {
        run_plan_options()},
       {"pause", guarded<m_pause>,
        "m:pause() → t, step, paused\nPauses the background run: no step begins after it returns (paused: false "
-       "when none was going or it had taken its last step); loads, boundaries, controls and outputs can then be changed."},
+       "when none was going or it had taken its last step); loads, boundaries, controls and outputs can then be "
+       "changed."},
       {"resume", guarded<m_resume>, "m:resume() → boolean\nWhether the paused background run goes on now."},
       {"stop", guarded<m_stop>, "m:stop() → t, step\nEnds the background run at its next step boundary."},
       {"wait", guarded<m_wait>,

@@ -127,7 +127,7 @@ class RunControl {
   bool stop_ = false;
   bool hold_next_ = false;
   bool finishing_ = false;  // finish_unless_paused() said yes: nothing left to pause
-  std::string notice_;  // for take_notice (empty once taken)
+  std::string notice_;      // for take_notice (empty once taken)
   std::thread::id stepping_thread_;
 };
 
