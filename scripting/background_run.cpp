@@ -40,7 +40,6 @@ void BackgroundRun::collect_if_ended() {
 
 bool BackgroundRun::one_step(std::string& failed) {
   try {
-    if (run_.done()) return false;
     run_.advance(lua_);
     return run_.follow_up(lua_);
   } catch (const std::exception& e) {

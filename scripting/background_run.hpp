@@ -33,8 +33,9 @@ class BackgroundRun {
 
  private:
   void main();
-  // Holding the model: one step and its follow-up; false when the run ends
-  // here (plan done, callback said stop, error: `failed` then holds it).
+  // Holding the model, with a step left: one step and its follow-up; false
+  // when the run ends here (callback said stop, error: `failed` then holds
+  // it).
   bool one_step(std::string& failed);
 
   ScriptModel& m_;

@@ -256,8 +256,10 @@ void run_loop(lua_State* L, ScriptModel& m, RunPlan plan) {
     if (!control.wait_between_steps(run.next_start(), interrupt_requested)) break;
     if (const std::string lag = run.take_lag_warning(); !lag.empty()) warn(lag);
     control.lock.yield();
-    if (run.done() && control.finish_unless_paused()) break;
-    if (run.done()) continue;  // paused just as it came to its end: wait for the resume
+    if (run.done()) {
+      if (control.finish_unless_paused()) break;
+      continue;  // paused just as it came to its end: wait for the resume
+    }
     run.advance(L);
     stop_if_interrupted(m, &run);
     progress.update(w.time(), w.step_count());
