@@ -86,6 +86,14 @@ add_test(NAME script.thread_scaling
          WORKING_DIRECTORY ${PROJECT_SOURCE_DIR})
 set_tests_properties(script.thread_scaling PROPERTIES LABELS scripts TIMEOUT 120)
 
+# The solver-choice table on a tiny wall (a smoke test: the row has each
+# solver's ms and CPU ms and auto's ratio to the better fixed solver).
+add_test(NAME script.solver_choice
+         COMMAND bash -c "DDA=$1 RUNS=1 WALLS='3:1' STEPS=2 scripts/bench/solver_choice.sh > \"$2\" && grep -qE '^wall\\(3\\) +dynamic( +[0-9.]+ +\\( *[0-9.]+\\)){4}$' \"$2\"" _
+                 $<TARGET_FILE:dda> ${DDA_SCRIPT_TEST_OUT}/solver_choice.txt
+         WORKING_DIRECTORY ${PROJECT_SOURCE_DIR})
+set_tests_properties(script.solver_choice PROPERTIES LABELS scripts TIMEOUT 120)
+
 # This engine's half of bench/ntdda_side_by_side.sh on a tiny dynamic wall,
 # under the default law and under Shi's at ntdda's tolerance (a smoke test: the
 # line the side-by-side reads has its 19 fields, and the wall settled, by more
