@@ -30,6 +30,12 @@ std::string pretty(const char* type) {
   return type;
 }
 
+// The type's name with its article: "a block", "an edge set".
+std::string a_pretty(const char* type) {
+  const std::string name = pretty(type);
+  return (std::strchr("aeiou", name[0]) ? "an " : "a ") + name;
+}
+
 // __index: methods first, then the type's fallback (fields), else an error
 // naming the key (a misspelt method is caught where it is written).
 int index_dispatch(lua_State* L) {
@@ -285,12 +291,12 @@ Handle* check_handle(lua_State* L, int idx, const char* type, std::string_view c
   Handle* h = test_handle(L, idx, type);
   if (!h) {
     if (what == "self")
-      fail(call, ": expected a ", pretty(type), " as self, got ", type_of(L, idx),
+      fail(call, ": expected ", a_pretty(type), " as self, got ", type_of(L, idx),
            " (call methods with a colon: x:method(...))");
-    fail(call, ": ", what, " must be a ", pretty(type), ", got ", type_of(L, idx));
+    fail(call, ": ", what, " must be ", a_pretty(type), ", got ", type_of(L, idx));
   }
   if (!h->model || h->model->closed())
-    fail(call, ": attempt to use a ", pretty(type), " of a closed model (m:close() was called)");
+    fail(call, ": attempt to use ", a_pretty(type), " of a closed model (m:close() was called)");
   hold_for_call(*h->model);
   return h;
 }

@@ -203,7 +203,7 @@ void register_edges(lua_State* L) {
       {"pressure", guarded<es_pressure>,
        "edges:pressure(p) → Pressure. p: number, {{t, p}, ...} or function(t); Pa, positive pushes into the blocks."},
       {}};
-  static const luaL_Reg meta[] = {{"__len", es_len}, {"__tostring", es_tostring}, {nullptr, nullptr}};
+  static const luaL_Reg meta[] = {{"__len", guarded<es_len>}, {"__tostring", es_tostring}, {nullptr, nullptr}};
   define_type(L, kEdgeSetType, methods, meta, guarded<es_index>);
 }
 

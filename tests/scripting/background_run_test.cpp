@@ -93,6 +93,27 @@ TEST_P(BackgroundRunLoads, PausedAndResumedRunIsBitIdenticalToAStraightRun) {
 
 INSTANTIATE_TEST_SUITE_P(LoadsInLuaOrNot, BackgroundRunLoads, ::testing::Bool());
 
+// `#edges` (a metamethod) lets go of the model it reads when it returns, as
+// every API call does: a run started after it steps while the script polls
+// (it held the model for good, and the poll below timed out). On a closed
+// model it raises a Lua error naming the call (it aborted the program).
+TEST_F(BackgroundRun, EdgeSetLengthHoldsItsModelOnlyForTheCall) {
+  run("b = scene(2, false)\n"
+      "n = #b:edges{}\n"
+      "b:start{ steps = 30 }\n"
+      "local c0 = os.clock()\n"
+      "while b:running() and os.clock() - c0 < 20 do busy(20000) end\n"
+      "ran_while_polled = b:running() and 0 or 1\n"
+      "b:wait()\n"
+      "e = b:edges{}\n"
+      "b:close()\n"
+      "ok, closed_error = pcall(function() return #e end)\n");
+  EXPECT_GT(number("n"), 0);
+  EXPECT_EQ(number("ran_while_polled"), 1) << "the run did not step while the script polled m:running()";
+  EXPECT_EQ(string("closed_error"),
+            "test:10: #edges: attempt to use an edge set of a closed model (m:close() was called)");
+}
+
 TEST_F(BackgroundRun, ChangeWhilePausedEqualsTheSameChangeBetweenTwoRuns) {
   run("b = scene(1, false)\n"
       "b:start{ steps = 300 }\n"
