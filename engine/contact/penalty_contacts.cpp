@@ -307,25 +307,47 @@ NextSolve PenaltyContacts::check_solve_as(Law& law, std::span<Contact> contacts,
 ContactEnergy PenaltyContacts::energy(std::span<const Contact> contacts, const ContactLinearisation& lin,
                                       const VecX& d) const {
   // The elastic energy of the closed contacts' springs after the last check,
-  // and the work of friction on the sliding ones over the step; serial, in
-  // contact order (the caller runs it beside the blocks' parallel terms).
+  // and the work of friction on the sliding ones over the step. Each
+  // contact's terms in parallel, over fixed chunks of contacts, into each
+  // chunk's list of the terms it adds (an open contact adds none), then
+  // the lists summed in contact order: the same bits as one serial loop
+  // over the contacts, for any thread count.
+  const std::size_t n = contacts.size(), chunks = chunk_count(n);
+  held_terms_.resize(2 * n);
+  friction_terms_.resize(n);
+  term_counts_.resize(chunks);
+  parallel_for_each(
+      chunks,
+      [&](std::size_t k) {
+        double* held = held_terms_.data() + 2 * k * kChunk;
+        double* friction = friction_terms_.data() + k * kChunk;
+        int h = 0, f = 0;
+        for (std::size_t i = k * kChunk; i < std::min(n, (k + 1) * kChunk); ++i) {
+          const Contact& c = contacts[i];
+          if (c.state == ContactState::Open) continue;
+          const ContactParameters::Springs s = p_.springs(c);
+          const double kn = c.scale * s.kn, ks = c.scale * s.ks;
+          if (kn > 0) held[h++] = 0.5 * c.normal_force * c.normal_force / kn;
+          if (c.state == ContactState::Locked) {
+            if (ks > 0) held[h++] = 0.5 * c.shear_force * c.shear_force / ks;
+          } else {
+            // Sliding: friction (|Contact::shear_force| = N·tanφ) opposes the
+            // step's shear motion, whichever sign convention the law reports
+            // its shear force in: the work is −|S·ds|.
+            const ContactGradients& g = lin.gradients[i];
+            const double ds_step = g.es_v.dot(d.segment<6>(6 * c.vblock)) + g.es_e.dot(d.segment<6>(6 * c.eblock));
+            friction[f++] = std::abs(c.shear_force * ds_step);
+          }
+        }
+        term_counts_[k] = {h, f};
+      },
+      1);
   ContactEnergy e;
-  for (std::size_t i = 0; i < contacts.size(); ++i) {
-    const Contact& c = contacts[i];
-    if (c.state == ContactState::Open) continue;
-    const ContactParameters::Springs k = p_.springs(c);
-    const double kn = c.scale * k.kn, ks = c.scale * k.ks;
-    if (kn > 0) e.held += 0.5 * c.normal_force * c.normal_force / kn;
-    if (c.state == ContactState::Locked) {
-      if (ks > 0) e.held += 0.5 * c.shear_force * c.shear_force / ks;
-    } else {
-      // Sliding: friction (|Contact::shear_force| = N·tanφ) opposes the
-      // step's shear motion, whichever sign convention the law reports its
-      // shear force in: the work is −|S·ds|.
-      const ContactGradients& g = lin.gradients[i];
-      const double ds_step = g.es_v.dot(d.segment<6>(6 * c.vblock)) + g.es_e.dot(d.segment<6>(6 * c.eblock));
-      e.friction -= std::abs(c.shear_force * ds_step);
-    }
+  for (std::size_t k = 0; k < chunks; ++k) {
+    const double* held = held_terms_.data() + 2 * k * kChunk;
+    const double* friction = friction_terms_.data() + k * kChunk;
+    for (int j = 0; j < term_counts_[k].first; ++j) e.held += held[j];
+    for (int j = 0; j < term_counts_[k].second; ++j) e.friction -= friction[j];
   }
   return e;
 }

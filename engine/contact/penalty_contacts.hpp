@@ -168,6 +168,12 @@ class PenaltyContacts : public ContactModel {
   // Without friction_lag and with none held, a commit has nothing to drop.
   bool lagged_friction_held_ = true;
   std::unique_ptr<LandingLaw> landing_;
+  // energy()'s terms, per fixed chunk of contacts (kChunk), in contact
+  // order: what the chunk's contacts add to the held energy (up to two
+  // each) and take by friction (one), and how many of each (kept from step
+  // to step, so a step allocates nothing).
+  mutable std::vector<double> held_terms_, friction_terms_;
+  mutable std::vector<std::pair<int, int>> term_counts_;
 };
 
 }  // namespace dda

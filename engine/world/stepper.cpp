@@ -455,22 +455,40 @@ void Stepper::control_step(WorldState& w, Rejection r) {
 // the blocks' energy terms, in the same pass), then what the contacts keep;
 // time advances (unless settling). The contacts' energy terms are read before
 // an impact changes them, and what they keep written after the impacted
-// blocks moved; without impacts both run beside the blocks' pass (the energy
-// a serial loop: each result its own, so the same bits).
+// blocks moved. Without impacts the contacts' energy runs beside the loads'
+// and boundaries' work and points (short serial loops), and their commit
+// beside the blocks' pass: each touches only its own (each sum in its own
+// fixed order, so the same bits).
 void Stepper::update(WorldState& w) {
   StageTimer timer(stats_.profile, Stage::Update);
   const bool impacts = contact_model_->resolves_impacts();
   const auto book_contacts = [&] {
     step_energy_.book_contacts(contact_model_->energy(w.contacts, linearisation_, solution_));
   };
-  step_energy_.start(w, solution_, scheme_, elastic_, w.controls.fixed_point_factor * g0_);
-  if (impacts) book_contacts();
-  const ImpactWork impact_work = resolve_impacts(w);
+  const auto book_work = [&] {
+    step_energy_.start(w, solution_, scheme_, elastic_, w.controls.fixed_point_factor * g0_);
+  };
+  const auto move_points = [&] {
+    w.loads.move_points(w.blocks, solution_);
+    w.boundaries.update(w.blocks, solution_, scheme_);
+    move_material_points(w.tracked, w.blocks, solution_);
+  };
+  ImpactWork impact_work;
+  if (impacts) {
+    book_work();
+    book_contacts();
+    impact_work = resolve_impacts(w);
+    move_points();
+  } else {
+    resolve_impacts(w);  // none (it forgets the last step's)
+    tbb::parallel_invoke(
+        [&] {
+          book_work();
+          move_points();
+        },
+        book_contacts);
+  }
   const VecX& solved = impacts ? solved_ : solution_;
-  const Blocks& blocks = w.blocks;
-  w.loads.move_points(blocks, solution_);
-  w.boundaries.update(blocks, solution_, scheme_);
-  move_material_points(w.tracked, blocks, solution_);
   tbb::parallel_invoke(
       [&] {
         move_blocks(w.blocks, solution_, vertex_motion_, elastic_, scheme_,
@@ -480,9 +498,7 @@ void Stepper::update(WorldState& w) {
                     });
       },
       [&] {
-        if (impacts) return;
-        book_contacts();
-        contact_model_->commit(w.blocks, w.contacts, linearisation_);
+        if (!impacts) contact_model_->commit(w.blocks, w.contacts, linearisation_);
       });
   step_energy_.account(w);
   if (impacts) {
