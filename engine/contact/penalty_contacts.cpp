@@ -23,14 +23,18 @@ namespace {
 template <typename T, typename Fold, typename Join>
 T parallel_fold(std::size_t n, T init, Fold&& fold, Join&& join) {
   return tbb::parallel_reduce(
-      tbb::blocked_range<std::size_t>(0, chunk_count(n), 1), init,
-      [&](const tbb::blocked_range<std::size_t>& chunks, T acc) {
-        const std::size_t end = std::min(n, chunks.end() * kChunk);
-        for (std::size_t i = chunks.begin() * kChunk; i < end; ++i) fold(i, acc);
+      tbb::blocked_range<std::size_t>(0, n, kOrderFreeGrain), init,
+      [&](const tbb::blocked_range<std::size_t>& r, T acc) {
+        for (std::size_t i = r.begin(); i != r.end(); ++i) fold(i, acc);
         return acc;
       },
       join);
 }
+
+// energy()'s chunks of contacts: any size gives the same sums (each chunk
+// lists its terms, summed in contact order); small enough to share among
+// many threads.
+constexpr std::size_t kTermChunk = 128;
 }  // namespace
 
 PenaltyContacts::PenaltyContacts() : landing_(std::make_unique<LandingLaw>()) {}
@@ -312,17 +316,17 @@ ContactEnergy PenaltyContacts::energy(std::span<const Contact> contacts, const C
   // chunk's list of the terms it adds (an open contact adds none), then
   // the lists summed in contact order: the same bits as one serial loop
   // over the contacts, for any thread count.
-  const std::size_t n = contacts.size(), chunks = chunk_count(n);
+  const std::size_t n = contacts.size(), chunks = (n + kTermChunk - 1) / kTermChunk;
   held_terms_.resize(2 * n);
   friction_terms_.resize(n);
   term_counts_.resize(chunks);
   parallel_for_each(
       chunks,
       [&](std::size_t k) {
-        double* held = held_terms_.data() + 2 * k * kChunk;
-        double* friction = friction_terms_.data() + k * kChunk;
+        double* held = held_terms_.data() + 2 * k * kTermChunk;
+        double* friction = friction_terms_.data() + k * kTermChunk;
         int h = 0, f = 0;
-        for (std::size_t i = k * kChunk; i < std::min(n, (k + 1) * kChunk); ++i) {
+        for (std::size_t i = k * kTermChunk; i < std::min(n, (k + 1) * kTermChunk); ++i) {
           const Contact& c = contacts[i];
           if (c.state == ContactState::Open) continue;
           const ContactParameters::Springs s = p_.springs(c);
@@ -344,8 +348,8 @@ ContactEnergy PenaltyContacts::energy(std::span<const Contact> contacts, const C
       1);
   ContactEnergy e;
   for (std::size_t k = 0; k < chunks; ++k) {
-    const double* held = held_terms_.data() + 2 * k * kChunk;
-    const double* friction = friction_terms_.data() + k * kChunk;
+    const double* held = held_terms_.data() + 2 * k * kTermChunk;
+    const double* friction = friction_terms_.data() + k * kTermChunk;
     for (int j = 0; j < term_counts_[k].first; ++j) e.held += held[j];
     for (int j = 0; j < term_counts_[k].second; ++j) e.friction -= friction[j];
   }
