@@ -455,9 +455,9 @@ void Stepper::control_step(WorldState& w, Rejection r) {
 // the blocks' energy terms, in the same pass), then what the contacts keep;
 // time advances (unless settling). The contacts' energy terms are read before
 // an impact changes them, and what they keep written after the impacted
-// blocks moved. Without impacts the contacts' energy runs beside the loads'
-// and boundaries' work and points (short serial loops), and their commit
-// beside the blocks' pass: each touches only its own (each sum in its own
+// blocks moved. Without impacts the contacts' energy and commit run beside
+// the loads' and boundaries' work, the points (short serial loops) and the
+// blocks' pass: neither touches what the other reads (each sum in its own
 // fixed order, so the same bits).
 void Stepper::update(WorldState& w) {
   StageTimer timer(stats_.profile, Stage::Update);
@@ -481,16 +481,14 @@ void Stepper::update(WorldState& w) {
     move_points();
   } else {
     resolve_impacts(w);  // none (it forgets the last step's)
-    tbb::parallel_invoke(
-        [&] {
-          book_work();
-          move_points();
-        },
-        book_contacts);
   }
   const VecX& solved = impacts ? solved_ : solution_;
   tbb::parallel_invoke(
       [&] {
+        if (!impacts) {
+          book_work();
+          move_points();
+        }
         move_blocks(w.blocks, solution_, vertex_motion_, elastic_, scheme_,
                     [&](std::size_t b, const IntegratedTt& mass) {
                       step_energy_.book_block(w.blocks, b, solved.segment<6>(6 * b), mass);
@@ -498,7 +496,9 @@ void Stepper::update(WorldState& w) {
                     });
       },
       [&] {
-        if (!impacts) contact_model_->commit(w.blocks, w.contacts, linearisation_);
+        if (!impacts)
+          step_energy_.book_contacts(
+              contact_model_->energy_and_commit(w.blocks, w.contacts, linearisation_, solution_));
       });
   step_energy_.account(w);
   if (impacts) {
