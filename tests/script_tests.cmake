@@ -69,14 +69,30 @@ dda_run_test(script.blast_geometry scripts 600 paper/blast_geometry.lua)
 
 # The benchmark table's machinery on tiny scenes (a smoke test: the scripts
 # run and the table has its rows and columns; no timing is checked). Two
-# runs per row, the median kept: 3 scenes × 2 thread counts = 6 rows of 21
-# columns; blast:4:2:3 is timed after 3 untimed steps, its row blast(4)@3.
-# Chosen scenes print the table on stdout.
+# runs per row, the median kept: 4 scenes × 2 thread counts = 8 rows of 21
+# columns; blast:4:2:3 is timed after 3 untimed steps, its row blast(4)@3; the
+# meshed row's name holds no comma. Chosen scenes print the table on stdout.
 add_test(NAME script.bench_table
-         COMMAND bash -c "mkdir -p \"$(dirname \"$2\")\" && DDA=$1 REPEAT=2 SCENES='wall:3:2 blast:4:2 blast:4:2:3' scripts/bench/run.sh > \"$2\" && test $(grep -c '^wall(3),' \"$2\") = 2 && test $(grep -c '^blast(4),' \"$2\") = 2 && test $(grep -c '^blast(4)@3,' \"$2\") = 2 && test $(awk -F, '!/^#/ && NF != 21' \"$2\" | wc -l) = 0" _
+         COMMAND bash -c "mkdir -p \"$(dirname \"$2\")\" && DDA=$1 REPEAT=2 SCENES='wall:3:2 blast:4:2 blast:4:2:3 blast_meshed:2/4:1' scripts/bench/run.sh > \"$2\" && test $(grep -c '^wall(3),' \"$2\") = 2 && test $(grep -c '^blast(4),' \"$2\") = 2 && test $(grep -c '^blast(4)@3,' \"$2\") = 2 && test $(grep -c '^blast_meshed(2/4),' \"$2\") = 2 && test $(awk -F, '!/^#/ && NF != 21' \"$2\" | wc -l) = 0" _
                  $<TARGET_FILE:dda> ${DDA_SCRIPT_TEST_OUT}/bench_table.csv
          WORKING_DIRECTORY ${PROJECT_SOURCE_DIR})
 set_tests_properties(script.bench_table PROPERTIES LABELS scripts TIMEOUT 120)
+
+# The thread-scaling table on a tiny scene (a smoke test: every stage's row has
+# a time per thread count, a speed-up, a serial fraction and a bound).
+add_test(NAME script.thread_scaling
+         COMMAND bash -c "DDA=$1 THREADS='1 2' RUNS=1 SCENES='blast:4:2' scripts/bench/thread_scaling.sh > \"$2\" && grep -q '^== blast(4), [0-9]* blocks' \"$2\" && test $(grep -cE '^(detect|predict|assemble|solve|check|control|update|total) +([0-9.]+ +){4}[0-9.]+$' \"$2\") = 8" _
+                 $<TARGET_FILE:dda> ${DDA_SCRIPT_TEST_OUT}/thread_scaling.txt
+         WORKING_DIRECTORY ${PROJECT_SOURCE_DIR})
+set_tests_properties(script.thread_scaling PROPERTIES LABELS scripts TIMEOUT 120)
+
+# The solver-choice table on a tiny wall (a smoke test: the row has each
+# solver's ms and CPU ms and auto's ratio to the better fixed solver).
+add_test(NAME script.solver_choice
+         COMMAND bash -c "DDA=$1 RUNS=1 WALLS='3:1' STEPS=2 scripts/bench/solver_choice.sh > \"$2\" && grep -qE '^wall\\(3\\) +dynamic( +[0-9.]+ +\\( *[0-9.]+\\)){4}$' \"$2\"" _
+                 $<TARGET_FILE:dda> ${DDA_SCRIPT_TEST_OUT}/solver_choice.txt
+         WORKING_DIRECTORY ${PROJECT_SOURCE_DIR})
+set_tests_properties(script.solver_choice PROPERTIES LABELS scripts TIMEOUT 120)
 
 # This engine's half of bench/ntdda_side_by_side.sh on a tiny dynamic wall,
 # under the default law and under Shi's at ntdda's tolerance (a smoke test: the

@@ -66,4 +66,18 @@ T parallel_max(std::size_t n, T init, F&& f) {
       [](T a, T b) { return b > a ? b : a; });
 }
 
+// Whether pred(i) holds for every i in [0, n), over the same fixed chunks
+// (a chunk stops at its first failure; the answer is the same in any order).
+template <typename F>
+bool parallel_all(std::size_t n, F&& pred) {
+  return tbb::parallel_reduce(
+      tbb::blocked_range<std::size_t>(0, chunk_count(n), 1), true,
+      [&](const tbb::blocked_range<std::size_t>& chunks, bool all) {
+        const std::size_t end = std::min(n, chunks.end() * kChunk);
+        for (std::size_t i = chunks.begin() * kChunk; all && i < end; ++i) all = pred(i);
+        return all;
+      },
+      [](bool a, bool b) { return a && b; });
+}
+
 }  // namespace dda

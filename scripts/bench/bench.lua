@@ -18,7 +18,7 @@
 --          --set integrator=newmark|generalized_alpha (default: the scene's, shi).
 --          --set law=shi|holding: the contact law (default: the scene's; the walls take the
 --          engine's default); --set stages=true also prints each stage's ms per step
---          (scripts/bench/serial_fractions.sh reads it).
+--          (scripts/bench/thread_scaling.sh reads it).
 -- Run:     build/dda run scripts/bench/bench.lua --set scene=wall --set n=20 --set threads=2 [--set csv=FILE]
 --          (scripts/bench/run.sh runs the whole table, one process per row so
 --          that each row's peak memory is its own).
@@ -59,7 +59,7 @@ elseif scene == "blast" then
   m, name = scenes.blast(h, threads), string.format("blast(%g)", h)
 elseif scene == "blast_meshed" then
   local mesh, radius = dda.param("mesh", 0.25), dda.param("radius", 12)
-  m, name = scenes.blast_meshed(mesh, radius, threads), string.format("blast_meshed(%g,%g)", mesh, radius)
+  m, name = scenes.blast_meshed(mesh, radius, threads), string.format("blast_meshed(%g/%g)", mesh, radius)
 elseif scene == "bar" then
   m, name = scenes.bar(threads), "bar"
 else

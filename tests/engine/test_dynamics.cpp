@@ -4,10 +4,13 @@
 // stack; and bit-identical results for any thread count.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <vector>
 
 #include "../scenes.hpp"
+#include "core/parallel.hpp"
 
 using namespace dda;
 
@@ -245,6 +248,39 @@ TEST(Determinism, PatchResolvesSameStateHashForOneTwoAndFourThreads) {
   const std::uint64_t h1 = run_patch_scene(1);
   EXPECT_EQ(run_patch_scene(2), h1);
   EXPECT_EQ(run_patch_scene(4), h1);
+}
+
+// parallel_all (the step's check that a solve is finite): every failure
+// position is found, at the ends of chunks too; nothing fails on no items.
+TEST(Parallel, AllFindsAFailureAnywhere) {
+  const std::size_t n = 3 * kChunk + 5;
+  std::vector<char> ok(n, 1);
+  EXPECT_TRUE(parallel_all(n, [&](std::size_t i) { return ok[i] != 0; }));
+  EXPECT_TRUE(parallel_all(0, [](std::size_t) { return false; }));
+  for (const std::size_t bad : {std::size_t(0), kChunk - 1, kChunk, 2 * kChunk + 7, n - 1}) {
+    ok[bad] = 0;
+    EXPECT_FALSE(parallel_all(n, [&](std::size_t i) { return ok[i] != 0; })) << "failure at " << bad;
+    ok[bad] = 1;
+  }
+}
+
+// The step's count of closed contacts (made in parallel) against a plain
+// count, on the bar whose cohesionless joints open and close behind the wave;
+// more than one chunk of contacts, so that chunks are joined.
+TEST(StepStats, ClosedContactsCountsEveryContactNotOpen) {
+  World w = test::kicked_bar(600, 3, 1.0);
+  w.joint_material(0) = JointMaterial{30, 0, 0};
+  w.controls().threads = 3;
+  bool some_open = false;
+  for (int i = 0; i < 60; ++i) {
+    const StepStats s = w.step();
+    ASSERT_GT(w.contacts().size(), kChunk);
+    const auto closed = std::count_if(w.contacts().begin(), w.contacts().end(),
+                                      [](const Contact& c) { return c.state != ContactState::Open; });
+    EXPECT_EQ(s.closed_contacts, closed) << "step " << i + 1;
+    some_open = some_open || closed < static_cast<long>(w.contacts().size());
+  }
+  EXPECT_TRUE(some_open) << "no contact opened: the count is not exercised";
 }
 
 TEST(Determinism, WaveProblemSameStateHashForOneTwoAndFourThreads) {
