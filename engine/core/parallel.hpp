@@ -66,6 +66,19 @@ T parallel_max(std::size_t n, T init, F&& f) {
       [](T a, T b) { return b > a ? b : a; });
 }
 
+// How many i in [0, n) pred(i) holds for: a count is exact in any order (no
+// buffer to allocate, unlike deterministic_sum).
+template <typename F>
+std::size_t parallel_count(std::size_t n, F&& pred) {
+  return tbb::parallel_reduce(
+      tbb::blocked_range<std::size_t>(0, n, kOrderFreeGrain), std::size_t(0),
+      [&](const tbb::blocked_range<std::size_t>& r, std::size_t count) {
+        for (std::size_t i = r.begin(); i != r.end(); ++i) count += pred(i) ? 1 : 0;
+        return count;
+      },
+      [](std::size_t a, std::size_t b) { return a + b; });
+}
+
 // Whether pred(i) holds for every i in [0, n), over the same fixed chunks
 // (a chunk stops at its first failure; the answer is the same in any order).
 template <typename F>

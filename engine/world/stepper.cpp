@@ -542,8 +542,8 @@ void Stepper::finish_step(WorldState& w) {
   stats_.contacts = static_cast<int>(w.contacts.size());
   // Counted in parallel: on one thread this memory-bound pass over every
   // contact would not shrink with the threads; a count is exact in any order.
-  stats_.closed_contacts = static_cast<int>(deterministic_sum<std::size_t>(
-      w.contacts.size(), [&](std::size_t i) { return w.contacts[i].state != ContactState::Open ? 1 : 0; }));
+  stats_.closed_contacts = static_cast<int>(
+      parallel_count(w.contacts.size(), [&](std::size_t i) { return w.contacts[i].state != ContactState::Open; }));
 }
 
 }  // namespace dda
