@@ -7,6 +7,8 @@
 #include <cholmod.h>
 #include <algorithm>
 #include <mutex>
+#include <utility>
+#include <vector>
 
 #include "core/error.hpp"
 #include "core/parallel.hpp"
@@ -153,12 +155,42 @@ void CholmodFactor::fill_values(const BlockSparseMatrix& a) {
       16);
 }
 
+// fill_values() backwards: the analysed pattern, each block (J, I ≥ J) from
+// a_'s values and its mirror (I, J) as its transpose.
+BlockSparseMatrix CholmodFactor::factorised_matrix() const {
+  DDA_ASSERT(ready_, "CholmodFactor::factorised_matrix without a factor");
+  std::vector<std::pair<int, int>> pairs;
+  for (int j = 0; j < blocks_; ++j)
+    for (int k = row_starts_[j]; k < row_starts_[j + 1]; ++k)
+      if (columns_[k] > j) pairs.emplace_back(j, columns_[k]);
+  BlockSparseMatrix m;
+  m.set_structure(blocks_, pairs);
+  DDA_ASSERT(std::ranges::equal(m.row_starts(), row_starts_) && std::ranges::equal(m.columns(), columns_),
+             "CholmodFactor: the analysed pattern is not one set_structure makes");
+  const double* ax = static_cast<const double*>(a_->x);
+  for (int j = 0; j < blocks_; ++j) {
+    int e = value_start_[j];
+    for (int c = 0; c < 6; ++c)
+      for (int k = m.row_begin(j); k < m.row_end(j); ++k) {
+        const int i = m.col(k);
+        if (i < j) continue;
+        Mat6& v = m.value(k);
+        for (int r = i == j ? c : 0; r < 6; ++r) {
+          v(c, r) = ax[e++];
+          if (i == j) v(r, c) = v(c, r);
+        }
+      }
+    for (int k = m.row_begin(j); k < m.row_end(j); ++k)
+      if (m.col(k) > j) m.value(m.find(m.col(k), j)) = m.value(k).transpose();
+  }
+  return m;
+}
+
 bool CholmodFactor::factorise(const BlockSparseMatrix& a) {
   const bool same_pattern = l_ && a.rows() == blocks_ && std::ranges::equal(a.row_starts(), row_starts_) &&
                             std::ranges::equal(a.columns(), columns_);
   if (!same_pattern) analyse(a);
   fill_values(a);
-  source_ = a;
   ready_ = false;
   if (!cholmod_factorize(a_, l_, common_)) throw Error("CHOLMOD could not factorise the system (out of memory?)");
   ++factorisations_;

@@ -47,11 +47,13 @@ class CholmodFactor {
   // false until the next successful factorise).
   bool factorise(const BlockSparseMatrix& a);
   bool ready() const { return ready_; }
-  // The matrix of the last factorisation. A checkpoint stores it and a
-  // restored run factorises it again: the same matrix, ordering and
-  // single-threaded kernels give the same factor bit for bit, so the run
-  // continues as the straight run would have.
-  const BlockSparseMatrix& factorised_matrix() const { return source_; }
+  // The matrix of the last factorisation (while ready()), rebuilt from the
+  // triangle CHOLMOD holds: the factor keeps no copy of its own (on
+  // wall(200) it would be 160 MB). A checkpoint stores it and a restored run
+  // factorises it again: the same triangle, ordering and single-threaded
+  // kernels give the same factor bit for bit, so the run continues as the
+  // straight run would have.
+  BlockSparseMatrix factorised_matrix() const;
   // z = A⁻¹ r with the factor (r and z sized 6 × the factor's block rows).
   void solve(const VecX& r, VecX& z) const;
   int block_rows() const { return blocks_; }
@@ -75,7 +77,6 @@ class CholmodFactor {
   cholmod_factor_struct* l_ = nullptr;
   mutable cholmod_dense_struct *x_ = nullptr, *y_ = nullptr, *e_ = nullptr;  // cholmod_solve2's workspace
   std::vector<int> row_starts_, columns_;                                    // the block pattern analysed
-  BlockSparseMatrix source_;                                                 // a copy of the matrix last factorised
   std::vector<int> value_start_;  // per block row: where its 6 scalar columns start in a_
   int blocks_ = 0;
   bool ready_ = false;

@@ -59,6 +59,16 @@
 //      makes the kept factor stale; judged in the long regime, the trial
 //      showed no factorisation where the steps after it made one each).
 //
+// The trial is made, not priced from CHOLMOD's symbolic analysis before its
+// numeric factor (which would spare its memory, the factor's, on walls that
+// then go back to PCG): the analysis prices the cheapest step the factor
+// could make (one CG iteration, the factorisation spread as in rule 1) at 10
+// to 34 PCG iterations on walls 10 to 200, far below any PCG step that calls
+// for a trial, and the same analysis goes with a trial that loses (wall(200)
+// under the holding law: the kept factor fails the next step) and one that
+// wins (the same wall under Shi's law). What decides is whether the kept
+// factor serves the next step, which only the trial shows.
+//
 // Counts, not seconds: seconds depend on the machine's load, and the choice
 // changes the answer within the solver tolerance, so a choice from timings
 // would make results differ from run to run. Iteration counts and CHOLMOD's
