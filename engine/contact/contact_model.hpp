@@ -222,6 +222,14 @@ class ContactModel {
   // (resolves_impacts() false) it touches no block, and may run beside the
   // pass that moves them.
   virtual void commit(Blocks& blocks, std::span<Contact> contacts, const ContactLinearisation& lin) = 0;
+  // energy() then commit(), without impacts: a model may do both in one
+  // pass over the contacts (the same results).
+  virtual ContactEnergy energy_and_commit(Blocks& blocks, std::span<Contact> contacts, const ContactLinearisation& lin,
+                                          const VecX& d) {
+    const ContactEnergy e = energy(contacts, lin, d);
+    commit(blocks, contacts, lin);
+    return e;
+  }
 
   // ---- Checkpoint: the law's own state carried from step to step, its
   // per-contact history included (load: into a model that took over the

@@ -146,29 +146,27 @@ NextSolve HoldingLaw::solve_again_for_friction(bool gross, bool states_changed) 
 // step redone) then starts from the force it carried, without a jump: a
 // spring that re-locked unloaded let a block on an incline slip by its shear
 // displacement S/ks at every re-lock and ratchet down the slope.
-void HoldingLaw::keep_shear_references(std::span<Contact> contacts, const ContactLinearisation& lin) {
-  parallel_for_each(
-      contacts.size(),
-      [&](std::size_t i) {
-        Contact& c = contacts[i];
-        const ContactOffsets& o = lin.offsets[i];
-        const ContactIterate& it = iterate_[i];
-        const double ks = contact_springs(c, p_).ks;
-        if (c.state == ContactState::Open || !(ks > 0)) {
-          c.ref_valid = false;
-          return;
-        }
-        // Where it.shear was measured from.
-        const double reference = c.ref_valid && it.s0 == o.s0 ? c.ref_param : o.param - it.s0 / o.edge_length;
-        if (c.state == ContactState::Locked) {
-          c.ref_param = reference;
-        } else {
-          const double carried = c.shear_force / ks;  // the friction's shear offset
-          c.ref_param = reference + (it.shear - carried) / o.edge_length;
-        }
-        c.ref_valid = true;
-      },
-      256);
+void HoldingLaw::keep_shear_references(std::span<Contact> contacts, const ContactLinearisation& lin, std::size_t begin,
+                                       std::size_t end) {
+  for (std::size_t i = begin; i < end; ++i) {
+    Contact& c = contacts[i];
+    const ContactOffsets& o = lin.offsets[i];
+    const ContactIterate& it = iterate_[i];
+    const double ks = contact_springs(c, p_).ks;
+    if (c.state == ContactState::Open || !(ks > 0)) {
+      c.ref_valid = false;
+      continue;
+    }
+    // Where it.shear was measured from.
+    const double reference = c.ref_valid && it.s0 == o.s0 ? c.ref_param : o.param - it.s0 / o.edge_length;
+    if (c.state == ContactState::Locked) {
+      c.ref_param = reference;
+    } else {
+      const double carried = c.shear_force / ks;  // the friction's shear offset
+      c.ref_param = reference + (it.shear - carried) / o.edge_length;
+    }
+    c.ref_valid = true;
+  }
 }
 
 }  // namespace dda

@@ -57,7 +57,8 @@ class HoldingLaw final : public PenaltyContacts {
   FrictionConsistency friction_consistency(double normal, double solved_with, const ContactSprings& k,
                                            const ContactMotion& m, const ContactOffsets& o) const;
   NextSolve solve_again_for_friction(bool gross, bool states_changed);
-  void keep_shear_references(std::span<Contact> contacts, const ContactLinearisation& lin) override;
+  void keep_shear_references(std::span<Contact> contacts, const ContactLinearisation& lin, std::size_t begin,
+                             std::size_t end) override;
   bool sliding_keeps_reference() const override { return true; }
 
   double spread_ = 0;        // of the block translations of the displacement decided on (measure_step)

@@ -23,14 +23,18 @@ namespace {
 template <typename T, typename Fold, typename Join>
 T parallel_fold(std::size_t n, T init, Fold&& fold, Join&& join) {
   return tbb::parallel_reduce(
-      tbb::blocked_range<std::size_t>(0, chunk_count(n), 1), init,
-      [&](const tbb::blocked_range<std::size_t>& chunks, T acc) {
-        const std::size_t end = std::min(n, chunks.end() * kChunk);
-        for (std::size_t i = chunks.begin() * kChunk; i < end; ++i) fold(i, acc);
+      tbb::blocked_range<std::size_t>(0, n, kOrderFreeGrain), init,
+      [&](const tbb::blocked_range<std::size_t>& r, T acc) {
+        for (std::size_t i = r.begin(); i != r.end(); ++i) fold(i, acc);
         return acc;
       },
       join);
 }
+
+// The chunks of contacts of the energy terms and the commit: any size gives
+// the same sums (each chunk lists its terms, summed in contact order); small
+// enough to share among many threads.
+constexpr std::size_t kTermChunk = 128;
 }  // namespace
 
 PenaltyContacts::PenaltyContacts() : landing_(std::make_unique<LandingLaw>()) {}
@@ -304,30 +308,59 @@ NextSolve PenaltyContacts::check_solve_as(Law& law, std::span<Contact> contacts,
   return states_changed ? NextSolve::Counted : for_friction;
 }
 
-ContactEnergy PenaltyContacts::energy(std::span<const Contact> contacts, const ContactLinearisation& lin,
-                                      const VecX& d) const {
-  // The elastic energy of the closed contacts' springs after the last check,
-  // and the work of friction on the sliding ones over the step; serial, in
-  // contact order (the caller runs it beside the blocks' parallel terms).
-  ContactEnergy e;
-  for (std::size_t i = 0; i < contacts.size(); ++i) {
+// The elastic energy of the closed contacts' springs after the last check,
+// and the work of friction on the sliding ones over the step. Each chunk's
+// terms (in parallel) into its own list of the terms it adds (an open
+// contact adds none), then the lists summed in contact order: the same bits
+// as one serial loop over the contacts, for any thread count.
+void PenaltyContacts::energy_terms(std::span<const Contact> contacts, const ContactLinearisation& lin, const VecX& d,
+                                   std::size_t chunk) const {
+  double* held = held_terms_.data() + 2 * chunk * kTermChunk;
+  double* friction = friction_terms_.data() + chunk * kTermChunk;
+  int h = 0, f = 0;
+  for (std::size_t i = chunk * kTermChunk; i < std::min(contacts.size(), (chunk + 1) * kTermChunk); ++i) {
     const Contact& c = contacts[i];
     if (c.state == ContactState::Open) continue;
-    const ContactParameters::Springs k = p_.springs(c);
-    const double kn = c.scale * k.kn, ks = c.scale * k.ks;
-    if (kn > 0) e.held += 0.5 * c.normal_force * c.normal_force / kn;
+    const ContactParameters::Springs s = p_.springs(c);
+    const double kn = c.scale * s.kn, ks = c.scale * s.ks;
+    if (kn > 0) held[h++] = 0.5 * c.normal_force * c.normal_force / kn;
     if (c.state == ContactState::Locked) {
-      if (ks > 0) e.held += 0.5 * c.shear_force * c.shear_force / ks;
+      if (ks > 0) held[h++] = 0.5 * c.shear_force * c.shear_force / ks;
     } else {
       // Sliding: friction (|Contact::shear_force| = N·tanφ) opposes the
       // step's shear motion, whichever sign convention the law reports its
       // shear force in: the work is −|S·ds|.
       const ContactGradients& g = lin.gradients[i];
       const double ds_step = g.es_v.dot(d.segment<6>(6 * c.vblock)) + g.es_e.dot(d.segment<6>(6 * c.eblock));
-      e.friction -= std::abs(c.shear_force * ds_step);
+      friction[f++] = std::abs(c.shear_force * ds_step);
     }
   }
+  term_counts_[chunk] = {h, f};
+}
+
+std::size_t PenaltyContacts::start_energy_terms(std::size_t contacts) const {
+  held_terms_.resize(2 * contacts);
+  friction_terms_.resize(contacts);
+  term_counts_.resize((contacts + kTermChunk - 1) / kTermChunk);
+  return term_counts_.size();
+}
+
+ContactEnergy PenaltyContacts::sum_energy_terms() const {
+  ContactEnergy e;
+  for (std::size_t k = 0; k < term_counts_.size(); ++k) {
+    const double* held = held_terms_.data() + 2 * k * kTermChunk;
+    const double* friction = friction_terms_.data() + k * kTermChunk;
+    for (int j = 0; j < term_counts_[k].first; ++j) e.held += held[j];
+    for (int j = 0; j < term_counts_[k].second; ++j) e.friction -= friction[j];
+  }
   return e;
+}
+
+ContactEnergy PenaltyContacts::energy(std::span<const Contact> contacts, const ContactLinearisation& lin,
+                                      const VecX& d) const {
+  parallel_for_each(
+      start_energy_terms(contacts.size()), [&](std::size_t k) { energy_terms(contacts, lin, d, k); }, 1);
+  return sum_energy_terms();
 }
 
 int PenaltyContacts::resolve_impacts(std::span<Contact> contacts, const ContactLinearisation& lin,
@@ -339,23 +372,41 @@ const ImpactEnergy& PenaltyContacts::impact_energy() const { return landing_->en
 
 // The accepted step: the landing law's blocks' end states, the shear springs'
 // reference points (the landing contacts' springs unloaded), the friction
-// lag's memory.
+// lag's memory; chunk by chunk, in parallel, where energy_and_commit also
+// makes each chunk's energy terms (one pass over the contacts).
 void PenaltyContacts::commit(Blocks& blocks, std::span<Contact> contacts, const ContactLinearisation& lin) {
+  commit_in_chunks(blocks, contacts, lin, [](std::size_t) {});
+}
+
+ContactEnergy PenaltyContacts::energy_and_commit(Blocks& blocks, std::span<Contact> contacts,
+                                                 const ContactLinearisation& lin, const VecX& d) {
+  start_energy_terms(contacts.size());
+  commit_in_chunks(blocks, contacts, lin, [&](std::size_t k) { energy_terms(contacts, lin, d, k); });
+  return sum_energy_terms();
+}
+
+template <class BeforeCommit>
+void PenaltyContacts::commit_in_chunks(Blocks& blocks, std::span<Contact> contacts, const ContactLinearisation& lin,
+                                       BeforeCommit&& before_commit) {
   landing_->write_end_states(blocks);
-  keep_shear_references(contacts, lin);
-  landing_->unload_shear_springs(contacts, lin, iterate_, sliding_keeps_reference());
   // Contacts found by a search start with no lagged friction, and a carried
   // contact keeps what it held: without the lag, a list cleared once stays
   // clear.
   const double t_r = p_.friction_lag;
-  if (!(t_r > 0) && !lagged_friction_held_) return;
+  const bool remember = t_r > 0 || lagged_friction_held_;
   lagged_friction_held_ = t_r > 0;
-  parallel_for_each(
-      contacts.size(),
-      [&](std::size_t i) {
-        remember_friction(memory_[i], contacts[i].state, contacts[i].normal_force, lag(i), dt_, t_r);
-      },
-      1024);
+  const std::size_t n = contacts.size();
+  parallel_for_each((n + kTermChunk - 1) / kTermChunk,
+                    [&](std::size_t k) {
+                      before_commit(k);
+                      const std::size_t begin = k * kTermChunk, end = std::min(n, begin + kTermChunk);
+                      keep_shear_references(contacts, lin, begin, end);
+                      if (remember)
+                        for (std::size_t i = begin; i < end; ++i)
+                          remember_friction(memory_[i], contacts[i].state, contacts[i].normal_force, lag(i), dt_, t_r);
+                    },
+                    1);
+  landing_->unload_shear_springs(contacts, lin, iterate_, sliding_keeps_reference());
 }
 
 void PenaltyContacts::save(ArchiveWriter& ar) const { ar(memory_); }

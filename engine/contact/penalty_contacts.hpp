@@ -74,6 +74,8 @@ class PenaltyContacts : public ContactModel {
                       VecX& d) override;
   const ImpactEnergy& impact_energy() const override;
   void commit(Blocks& blocks, std::span<Contact> contacts, const ContactLinearisation& lin) override;
+  ContactEnergy energy_and_commit(Blocks& blocks, std::span<Contact> contacts, const ContactLinearisation& lin,
+                                  const VecX& d) override;
   void save(ArchiveWriter& ar) const override;
   void load(ArchiveReader& ar) override;
 
@@ -114,9 +116,10 @@ class PenaltyContacts : public ContactModel {
   // The sign of a sliding contact's reported shear force (Contact::shear_force)
   // against its sliding direction.
   double reported_friction_sign(const Contact& c) const { return c.slide_sign; }
-  // The accepted step's shear reference points (Contact::ref_param), and
-  // whether a sliding contact keeps one.
-  virtual void keep_shear_references(std::span<Contact> contacts, const ContactLinearisation& lin) = 0;
+  // The accepted step's shear reference points (Contact::ref_param) of
+  // contacts [begin, end), and whether a sliding contact keeps one.
+  virtual void keep_shear_references(std::span<Contact> contacts, const ContactLinearisation& lin, std::size_t begin,
+                                     std::size_t end) = 0;
   virtual bool sliding_keeps_reference() const = 0;
 
   // The open-close passes over the contacts, with the law's questions (above)
@@ -168,6 +171,23 @@ class PenaltyContacts : public ContactModel {
   // Without friction_lag and with none held, a commit has nothing to drop.
   bool lagged_friction_held_ = true;
   std::unique_ptr<LandingLaw> landing_;
+  // The energy terms of chunk `chunk` of the contacts (of kTermChunk), into
+  // its lists; the lists' sizes for `contacts` contacts (returns the number
+  // of chunks); their sum in contact order.
+  void energy_terms(std::span<const Contact> contacts, const ContactLinearisation& lin, const VecX& d,
+                    std::size_t chunk) const;
+  std::size_t start_energy_terms(std::size_t contacts) const;
+  ContactEnergy sum_energy_terms() const;
+  // commit, chunk by chunk; before_commit(chunk) first in each.
+  template <class BeforeCommit>
+  void commit_in_chunks(Blocks& blocks, std::span<Contact> contacts, const ContactLinearisation& lin,
+                        BeforeCommit&& before_commit);
+  // The energy terms, per chunk of contacts, in contact order: what the
+  // chunk's contacts add to the held energy (up to two each) and take by
+  // friction (one), and how many of each (kept from step to step, so a step
+  // allocates nothing).
+  mutable std::vector<double> held_terms_, friction_terms_;
+  mutable std::vector<std::pair<int, int>> term_counts_;
 };
 
 }  // namespace dda

@@ -47,7 +47,8 @@ class ShiLaw final : public PenaltyContacts {
     return m.ds_step * c.slide_sign < -m.shear_slack;
   }
   double reported_friction_sign(const Contact& c) const { return -c.slide_sign; }
-  void keep_shear_references(std::span<Contact> contacts, const ContactLinearisation& lin) override;
+  void keep_shear_references(std::span<Contact> contacts, const ContactLinearisation& lin, std::size_t begin,
+                             std::size_t end) override;
   bool sliding_keeps_reference() const override { return false; }
 };
 

@@ -43,22 +43,40 @@ T deterministic_sum(std::size_t n, F&& f) {
   return total;
 }
 
-// Max of f(i) over [0, n), over the same fixed chunks. Max is exact in any
-// order, so partial maxima are joined as TBB pleases (no buffer to allocate:
-// this runs several times per step).
+// Results that do not depend on the order of their parts (maxima, flags)
+// need no fixed chunks: ranges of at least this many items, split as TBB
+// pleases (small enough that a pass over a few thousand blocks feeds many
+// threads).
+constexpr std::size_t kOrderFreeGrain = 128;
+
+// Max of f(i) over [0, n). Max is exact in any order, so partial maxima are
+// joined as TBB pleases (no buffer to allocate: this runs several times per
+// step).
 template <typename T, typename F>
 T parallel_max(std::size_t n, T init, F&& f) {
   return tbb::parallel_reduce(
-      tbb::blocked_range<std::size_t>(0, chunk_count(n), 1), init,
-      [&](const tbb::blocked_range<std::size_t>& chunks, T m) {
-        const std::size_t end = std::min(n, chunks.end() * kChunk);
-        for (std::size_t i = chunks.begin() * kChunk; i < end; ++i) {
+      tbb::blocked_range<std::size_t>(0, n, kOrderFreeGrain), init,
+      [&](const tbb::blocked_range<std::size_t>& r, T m) {
+        for (std::size_t i = r.begin(); i != r.end(); ++i) {
           const T v = f(i);
           if (v > m) m = v;
         }
         return m;
       },
       [](T a, T b) { return b > a ? b : a; });
+}
+
+// How many i in [0, n) pred(i) holds for: a count is exact in any order (no
+// buffer to allocate, unlike deterministic_sum).
+template <typename F>
+std::size_t parallel_count(std::size_t n, F&& pred) {
+  return tbb::parallel_reduce(
+      tbb::blocked_range<std::size_t>(0, n, kOrderFreeGrain), std::size_t(0),
+      [&](const tbb::blocked_range<std::size_t>& r, std::size_t count) {
+        for (std::size_t i = r.begin(); i != r.end(); ++i) count += pred(i) ? 1 : 0;
+        return count;
+      },
+      [](std::size_t a, std::size_t b) { return a + b; });
 }
 
 // Whether pred(i) holds for every i in [0, n), over the same fixed chunks

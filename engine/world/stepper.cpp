@@ -457,24 +457,40 @@ void Stepper::control_step(WorldState& w, Rejection r) {
 // the blocks' energy terms, in the same pass), then what the contacts keep;
 // time advances (unless settling). The contacts' energy terms are read before
 // an impact changes them, and what they keep written after the impacted
-// blocks moved; without impacts both run beside the blocks' pass (the energy
-// a serial loop: each result its own, so the same bits).
+// blocks moved. Without impacts the contacts' energy and commit run beside
+// the loads' and boundaries' work, the points (short serial loops) and the
+// blocks' pass: neither touches what the other reads (each sum in its own
+// fixed order, so the same bits).
 void Stepper::update(WorldState& w) {
   StageTimer timer(stats_.profile, Stage::Update);
   const bool impacts = contact_model_->resolves_impacts();
   const auto book_contacts = [&] {
     step_energy_.book_contacts(contact_model_->energy(w.contacts, linearisation_, solution_));
   };
-  step_energy_.start(w, solution_, scheme_, elastic_, w.controls.fixed_point_factor * g0_);
-  if (impacts) book_contacts();
-  const ImpactWork impact_work = resolve_impacts(w);
+  const auto book_work = [&] {
+    step_energy_.start(w, solution_, scheme_, elastic_, w.controls.fixed_point_factor * g0_);
+  };
+  const auto move_points = [&] {
+    w.loads.move_points(w.blocks, solution_);
+    w.boundaries.update(w.blocks, solution_, scheme_);
+    move_material_points(w.tracked, w.blocks, solution_);
+  };
+  ImpactWork impact_work;
+  if (impacts) {
+    book_work();
+    book_contacts();
+    impact_work = resolve_impacts(w);
+    move_points();
+  } else {
+    resolve_impacts(w);  // none (it forgets the last step's)
+  }
   const VecX& solved = impacts ? solved_ : solution_;
-  const Blocks& blocks = w.blocks;
-  w.loads.move_points(blocks, solution_);
-  w.boundaries.update(blocks, solution_, scheme_);
-  move_material_points(w.tracked, blocks, solution_);
   tbb::parallel_invoke(
       [&] {
+        if (!impacts) {
+          book_work();
+          move_points();
+        }
         move_blocks(w.blocks, solution_, vertex_motion_, elastic_, scheme_,
                     [&](std::size_t b, const IntegratedTt& mass) {
                       step_energy_.book_block(w.blocks, b, solved.segment<6>(6 * b), mass);
@@ -482,9 +498,9 @@ void Stepper::update(WorldState& w) {
                     });
       },
       [&] {
-        if (impacts) return;
-        book_contacts();
-        contact_model_->commit(w.blocks, w.contacts, linearisation_);
+        if (!impacts)
+          step_energy_.book_contacts(
+              contact_model_->energy_and_commit(w.blocks, w.contacts, linearisation_, solution_));
       });
   step_energy_.account(w);
   if (impacts) {
@@ -526,8 +542,8 @@ void Stepper::finish_step(WorldState& w) {
   stats_.contacts = static_cast<int>(w.contacts.size());
   // Counted in parallel: on one thread this memory-bound pass over every
   // contact would not shrink with the threads; a count is exact in any order.
-  stats_.closed_contacts = static_cast<int>(deterministic_sum<std::size_t>(
-      w.contacts.size(), [&](std::size_t i) { return w.contacts[i].state != ContactState::Open ? 1 : 0; }));
+  stats_.closed_contacts = static_cast<int>(
+      parallel_count(w.contacts.size(), [&](std::size_t i) { return w.contacts[i].state != ContactState::Open; }));
 }
 
 }  // namespace dda

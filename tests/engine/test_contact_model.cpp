@@ -8,10 +8,16 @@
 // bits).
 #include <gtest/gtest.h>
 
+#include <cstring>
+#include <random>
 #include <string>
 
+#include <tbb/task_arena.h>
+
 #include "../scenes.hpp"
+#include "contact/contact_detection.hpp"
 #include "contact/contact_model.hpp"
+#include "core/parallel.hpp"
 #include "world/controls.hpp"
 
 using namespace dda;
@@ -115,6 +121,81 @@ TEST(ContactModel, TheHistoryFollowsTheContactsIntoAnotherLaw) {
     EXPECT_EQ(test::friction_memory(w, i).age, age[i] + step.dt) << "contact " << i;
   }
   EXPECT_GE(closed, 1);
+}
+
+// The contacts' energy terms (ContactModel::energy, made in parallel) are
+// the serial loop's sums in contact order, bit for bit, for any thread count.
+// Reference: that loop, written out here (½N²/k_n and, locked, ½S²/k_s
+// held; −|S·ds| by friction, sliding); tolerance: none (the same bits). The
+// contacts' forces span nine decades, so another order of the sums (the
+// fixed chunks' partial sums, checked below) gives other bits: the test
+// could fail.
+TEST(ContactModel, EnergyIsTheSerialSumInContactOrderForAnyThreadCount) {
+  constexpr int kBlocks = 400, kContacts = 5000;
+  std::mt19937_64 random(7);
+  std::uniform_real_distribution<double> unit(0, 1);
+  const JointMaterial joints[] = {JointMaterial{30, 0, 0, 0, 0}, JointMaterial{25, 0, 0, 4e9, 0}};
+  ContactParameters p;
+  p.g0 = 1e10;
+  p.shear_ratio = 0.4;
+  p.joints = joints;
+  std::vector<Contact> contacts(kContacts);
+  ContactLinearisation lin;
+  lin.gradients.resize(kContacts);
+  for (int i = 0; i < kContacts; ++i) {
+    Contact& c = contacts[i];
+    c.vblock = static_cast<BlockId>(random() % kBlocks);
+    c.eblock = static_cast<BlockId>(random() % kBlocks);
+    c.joint = static_cast<std::int32_t>(random() % 2);
+    c.length = unit(random) < 0.5 ? 0.0 : 0.1 + unit(random);
+    c.scale = 0.5 + unit(random);
+    c.state = static_cast<ContactState>(random() % 3);
+    c.normal_force = std::pow(10.0, 9 * unit(random)) * (unit(random) - 0.5);
+    c.shear_force = std::pow(10.0, 9 * unit(random)) * (unit(random) - 0.5);
+    for (Vec6* g : {&lin.gradients[i].es_v, &lin.gradients[i].es_e})
+      for (int k = 0; k < 6; ++k) (*g)[k] = unit(random) - 0.5;
+  }
+  VecX d(6 * kBlocks);
+  for (Eigen::Index k = 0; k < d.size(); ++k) d[k] = 1e-3 * (unit(random) - 0.5);
+
+  std::vector<double> held_terms, friction_terms;  // in contact order
+  for (int i = 0; i < kContacts; ++i) {
+    const Contact& c = contacts[i];
+    if (c.state == ContactState::Open) continue;
+    const ContactParameters::Springs k = p.springs(c);
+    held_terms.push_back(0.5 * c.normal_force * c.normal_force / (c.scale * k.kn));
+    if (c.state == ContactState::Locked) {
+      held_terms.push_back(0.5 * c.shear_force * c.shear_force / (c.scale * k.ks));
+    } else {
+      const ContactGradients& g = lin.gradients[i];
+      const double ds = g.es_v.dot(d.segment<6>(6 * c.vblock)) + g.es_e.dot(d.segment<6>(6 * c.eblock));
+      friction_terms.push_back(std::abs(c.shear_force * ds));
+    }
+  }
+  ContactEnergy serial;
+  for (const double t : held_terms) serial.held += t;
+  for (const double t : friction_terms) serial.friction -= t;
+  ASSERT_GT(friction_terms.size(), 1000u);
+  // Another order: the fixed chunks' partial sums, added in chunk order.
+  double chunked = 0;
+  for (std::size_t c = 0; c < chunk_count(held_terms.size()); ++c) {
+    double partial = 0;
+    for (std::size_t i = c * kChunk; i < std::min(held_terms.size(), (c + 1) * kChunk); ++i) partial += held_terms[i];
+    chunked += partial;
+  }
+  ASSERT_NE(chunked, serial.held) << "the terms do not tell one order of summation from another";
+
+  for (const ContactLaw law : every_law()) {
+    for (const int threads : {1, 2, 4}) {
+      const std::unique_ptr<ContactModel> model = make_contact_model(law);
+      model->set_parameters(p);
+      ContactEnergy e;
+      tbb::task_arena(threads).execute([&] { e = model->energy(contacts, lin, d); });
+      EXPECT_EQ(std::memcmp(&e.held, &serial.held, sizeof(double)), 0) << name(law) << ", " << threads << " threads";
+      EXPECT_EQ(std::memcmp(&e.friction, &serial.friction, sizeof(double)), 0)
+          << name(law) << ", " << threads << " threads";
+    }
+  }
 }
 
 }  // namespace

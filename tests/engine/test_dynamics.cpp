@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <vector>
 
 #include "../scenes.hpp"
@@ -192,6 +193,37 @@ std::uint64_t run_wave_scene(int threads) {
 }
 
 }  // namespace
+
+// The energy budget's sums (the blocks' terms in block order, the contacts'
+// in contact order, made in parallel passes) are the same bits for any
+// thread count; the grid's 100-odd contacts span two of the contacts'
+// chunks. Reference: one thread; tolerance: none.
+TEST(Determinism, SameEnergyBudgetForOneTwoAndFourThreads) {
+  auto budget = [](int threads) {
+    World w;
+    const int rock = w.add_rock_material(test::granite());
+    w.joint_material(0) = JointMaterial{30, 1e5, 1e5};
+    test::add_fixed_base(w, test::rectangle(-1, -1, 7, 1), rock);
+    for (int r = 0; r < 10; ++r)
+      for (int c = 0; c < 10; ++c) w.add_block(test::rectangle(c * 0.5, r * 0.5, 0.5, 0.5), rock);
+    w.set_block_velocity(static_cast<BlockId>(w.block_count() - 1), Vec6(2.0, 0, 0.5, 0, 0, 0));
+    w.controls().gravity = Vec2(0, -9.81);
+    w.controls().g1 = 5e-4;
+    w.controls().threads = threads;
+    for (int i = 0; i < 100; ++i) w.step();
+    EXPECT_GT(w.contacts().size(), 128u) << "one chunk of contacts: their sums are not exercised";
+    return w.energy().total;
+  };
+  const EnergyTerms one = budget(1);
+  EXPECT_GT(one.contact, 0);
+  EXPECT_LT(one.friction, 0);
+  for (const int threads : {2, 4}) {
+    const EnergyTerms many = budget(threads);
+    for (const EnergyTermName& term : kEnergyTerms)
+      EXPECT_EQ(std::memcmp(&(many.*term.term), &(one.*term.term), sizeof(double)), 0)
+          << term.name << ", " << threads << " threads";
+  }
+}
 
 TEST(Determinism, SameStateHashForOneTwoAndFourThreads) {
   const std::uint64_t h1 = run_grid_scene(1);
