@@ -79,15 +79,14 @@ std::size_t parallel_count(std::size_t n, F&& pred) {
       [](std::size_t a, std::size_t b) { return a + b; });
 }
 
-// Whether pred(i) holds for every i in [0, n), over the same fixed chunks
-// (a chunk stops at its first failure; the answer is the same in any order).
+// Whether pred(i) holds for every i in [0, n): a flag is exact in any order
+// (a range stops at its first failure).
 template <typename F>
 bool parallel_all(std::size_t n, F&& pred) {
   return tbb::parallel_reduce(
-      tbb::blocked_range<std::size_t>(0, chunk_count(n), 1), true,
-      [&](const tbb::blocked_range<std::size_t>& chunks, bool all) {
-        const std::size_t end = std::min(n, chunks.end() * kChunk);
-        for (std::size_t i = chunks.begin() * kChunk; all && i < end; ++i) all = pred(i);
+      tbb::blocked_range<std::size_t>(0, n, kOrderFreeGrain), true,
+      [&](const tbb::blocked_range<std::size_t>& r, bool all) {
+        for (std::size_t i = r.begin(); all && i != r.end(); ++i) all = pred(i);
         return all;
       },
       [](bool a, bool b) { return a && b; });
