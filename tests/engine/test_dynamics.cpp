@@ -157,20 +157,22 @@ TEST(Dynamics, StackOfTenBlocksCarriesItsWeight) {
 namespace {
 
 // 100 blocks in a 10 × 10 grid on a base, a corner block kicked sideways.
-std::uint64_t run_grid_scene(int threads) {
+World grid_scene(int threads) {
   World w;
   const int rock = w.add_rock_material(test::granite());
   w.joint_material(0) = JointMaterial{30, 1e5, 1e5};
   test::add_fixed_base(w, test::rectangle(-1, -1, 7, 1), rock);
   for (int r = 0; r < 10; ++r)
     for (int c = 0; c < 10; ++c) w.add_block(test::rectangle(c * 0.5, r * 0.5, 0.5, 0.5), rock);
-  Vec6 kick = Vec6::Zero();
-  kick[0] = 2.0;
-  kick[2] = 0.5;
-  w.set_block_velocity(static_cast<BlockId>(w.block_count() - 1), kick);
+  w.set_block_velocity(static_cast<BlockId>(w.block_count() - 1), Vec6(2.0, 0, 0.5, 0, 0, 0));
   w.controls().gravity = Vec2(0, -9.81);
   w.controls().g1 = 5e-4;
   w.controls().threads = threads;
+  return w;
+}
+
+std::uint64_t run_grid_scene(int threads) {
+  World w = grid_scene(threads);
   for (int i = 0; i < 200; ++i) w.step();
   return w.state_hash();
 }
@@ -200,16 +202,7 @@ std::uint64_t run_wave_scene(int threads) {
 // chunks. Reference: one thread; tolerance: none.
 TEST(Determinism, SameEnergyBudgetForOneTwoAndFourThreads) {
   auto budget = [](int threads) {
-    World w;
-    const int rock = w.add_rock_material(test::granite());
-    w.joint_material(0) = JointMaterial{30, 1e5, 1e5};
-    test::add_fixed_base(w, test::rectangle(-1, -1, 7, 1), rock);
-    for (int r = 0; r < 10; ++r)
-      for (int c = 0; c < 10; ++c) w.add_block(test::rectangle(c * 0.5, r * 0.5, 0.5, 0.5), rock);
-    w.set_block_velocity(static_cast<BlockId>(w.block_count() - 1), Vec6(2.0, 0, 0.5, 0, 0, 0));
-    w.controls().gravity = Vec2(0, -9.81);
-    w.controls().g1 = 5e-4;
-    w.controls().threads = threads;
+    World w = grid_scene(threads);
     for (int i = 0; i < 100; ++i) w.step();
     EXPECT_GT(w.contacts().size(), 128u) << "one chunk of contacts: their sums are not exercised";
     return w.energy().total;
