@@ -35,6 +35,7 @@ T parallel_fold(std::size_t n, T init, Fold&& fold, Join&& join) {
 // the same sums (each chunk lists its terms, summed in contact order); small
 // enough to share among many threads.
 constexpr std::size_t kTermChunk = 128;
+std::size_t term_chunk_count(std::size_t contacts) { return (contacts + kTermChunk - 1) / kTermChunk; }
 }  // namespace
 
 PenaltyContacts::PenaltyContacts() : landing_(std::make_unique<LandingLaw>()) {}
@@ -341,7 +342,7 @@ void PenaltyContacts::energy_terms(std::span<const Contact> contacts, const Cont
 std::size_t PenaltyContacts::start_energy_terms(std::size_t contacts) const {
   held_terms_.resize(2 * contacts);
   friction_terms_.resize(contacts);
-  term_counts_.resize((contacts + kTermChunk - 1) / kTermChunk);
+  term_counts_.resize(term_chunk_count(contacts));
   return term_counts_.size();
 }
 
@@ -396,16 +397,17 @@ void PenaltyContacts::commit_in_chunks(Blocks& blocks, std::span<Contact> contac
   const bool remember = t_r > 0 || lagged_friction_held_;
   lagged_friction_held_ = t_r > 0;
   const std::size_t n = contacts.size();
-  parallel_for_each((n + kTermChunk - 1) / kTermChunk,
-                    [&](std::size_t k) {
-                      before_commit(k);
-                      const std::size_t begin = k * kTermChunk, end = std::min(n, begin + kTermChunk);
-                      keep_shear_references(contacts, lin, begin, end);
-                      if (remember)
-                        for (std::size_t i = begin; i < end; ++i)
-                          remember_friction(memory_[i], contacts[i].state, contacts[i].normal_force, lag(i), dt_, t_r);
-                    },
-                    1);
+  parallel_for_each(
+      term_chunk_count(n),
+      [&](std::size_t k) {
+        before_commit(k);
+        const std::size_t begin = k * kTermChunk, end = std::min(n, begin + kTermChunk);
+        keep_shear_references(contacts, lin, begin, end);
+        if (remember)
+          for (std::size_t i = begin; i < end; ++i)
+            remember_friction(memory_[i], contacts[i].state, contacts[i].normal_force, lag(i), dt_, t_r);
+      },
+      1);
   landing_->unload_shear_springs(contacts, lin, iterate_, sliding_keeps_reference());
 }
 
